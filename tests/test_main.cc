@@ -1,0 +1,14 @@
+// The main() shared by all test executables: deal.II's Trilinos wrappers
+// need MPI, so it is initialised here once for every GoogleTest case.
+
+#include <deal.II/base/mpi.h>
+
+#include <gtest/gtest.h>
+
+int
+main(int argc, char **argv)
+{
+  dealii::Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
+  ::testing::InitGoogleTest(&argc, argv);
+  return RUN_ALL_TESTS();
+}
