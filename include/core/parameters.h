@@ -1,0 +1,243 @@
+// @sect3{Run-time parameters}
+//
+// Everything a user chooses is read from a `.prm` file through deal.II's
+// ParameterHandler. As in the deal.II tutorials there is one structure per
+// subsection of the file, each with a function that declares its entries
+// (with a pattern that checks the allowed range and a documentation
+// string) and one that reads them. The file `parameters/default.prm` is
+// generated from these declarations by `soft-robot --print-parameters`,
+// so the documentation of every entry lives here and only here.
+//
+// Vector-valued functions of space and time (initial fields, tractions)
+// are given as muparser expressions with one component per space
+// dimension, separated by semicolons, in the variables `x`, `y`, `z`
+// (as many as the dimension) and `t`. An empty expression means zero.
+
+#ifndef soft_robot_core_parameters_h
+#define soft_robot_core_parameters_h
+
+#include <deal.II/base/parameter_handler.h>
+
+#include <map>
+#include <string>
+#include <vector>
+
+namespace SoftRobot
+{
+  using namespace dealii;
+
+  namespace Parameters
+  {
+    // @sect4{Problem}
+    struct Problem
+    {
+      unsigned int dimension;
+      std::string  output_directory;
+
+      static void
+      declare_parameters(ParameterHandler &prm);
+      void
+      parse_parameters(ParameterHandler &prm);
+    };
+
+    // @sect4{Geometry}
+    //
+    // The mesh comes either from one of deal.II's generators, named with
+    // its arguments as in GridGenerator::generate_from_name_and_arguments(),
+    // or from a gmsh file whose physical volume tags become material ids
+    // and whose physical surface tags become boundary ids.
+    struct Geometry
+    {
+      std::string  mesh_source;
+      std::string  generator_name;
+      std::string  generator_arguments;
+      std::string  mesh_file;
+      unsigned int global_refinements;
+      bool         convert_to_simplices;
+      double       distortion;
+      std::string  material_id_function;
+      double       model_fraction;
+
+      static void
+      declare_parameters(ParameterHandler &prm);
+      void
+      parse_parameters(ParameterHandler &prm);
+    };
+
+    // @sect4{Finite element}
+    struct FiniteElement
+    {
+      unsigned int degree;
+      unsigned int quadrature_points;
+
+      static void
+      declare_parameters(ParameterHandler &prm);
+      void
+      parse_parameters(ParameterHandler &prm);
+    };
+
+    // @sect4{Materials}
+    //
+    // One subsection `Material <id>` per material id of the mesh. The
+    // silicone body and the stiff tip block of the actuator are two
+    // materials of one mesh. In the reduced models (dim = 1 and 2) the
+    // `Section` entry is the cross-section area (dim = 1) or the thickness
+    // (dim = 2) that turns integrals over the model into integrals over
+    // the body it stands for; in 3D it is one.
+    struct Material
+    {
+      std::string name;
+      double      shear_modulus;
+      double      bulk_modulus;
+      double      density;
+      double      mass;
+      double      damping_zeta;
+      double      section;
+    };
+
+    struct Materials
+    {
+      static constexpr unsigned int max_material_id = 9;
+      // Only the subsections whose `Name` is not empty.
+      std::map<unsigned int, Material> by_id;
+
+      static void
+      declare_parameters(ParameterHandler &prm);
+      void
+      parse_parameters(ParameterHandler &prm);
+    };
+
+    // @sect4{Loads and constraints}
+    struct Loads
+    {
+      std::vector<double> gravity;
+      // Boundary id to the components fixed there ("xyz", "y", ...).
+      std::map<unsigned int, std::string> fixed_components;
+      std::vector<unsigned int>           traction_boundary_ids;
+      std::string                         traction_expression;
+      std::string                         constants;
+
+      static void
+      declare_parameters(ParameterHandler &prm);
+      void
+      parse_parameters(ParameterHandler &prm);
+    };
+
+    // @sect4{Initial conditions}
+    struct InitialConditions
+    {
+      std::string  type;
+      std::string  displacement_expression;
+      std::string  velocity_expression;
+      unsigned int load_steps;
+
+      static void
+      declare_parameters(ParameterHandler &prm);
+      void
+      parse_parameters(ParameterHandler &prm);
+    };
+
+    // @sect4{Time integration}
+    struct TimeIntegration
+    {
+      double       end_time;
+      double       time_step;
+      double       minimum_time_step;
+      double       alpha;
+      double       beta;
+      double       gamma;
+      unsigned int regrowth_steps;
+
+      static void
+      declare_parameters(ParameterHandler &prm);
+      void
+      parse_parameters(ParameterHandler &prm);
+    };
+
+    // @sect4{Newton's method}
+    struct NonlinearSolver
+    {
+      unsigned int max_iterations;
+      double       absolute_tolerance;
+      double       relative_tolerance;
+      bool         line_search;
+      unsigned int max_line_search_steps;
+
+      static void
+      declare_parameters(ParameterHandler &prm);
+      void
+      parse_parameters(ParameterHandler &prm);
+    };
+
+    // @sect4{Linear solver}
+    struct LinearSolver
+    {
+      std::string  type;
+      double       relative_tolerance;
+      unsigned int max_iterations;
+      unsigned int smoother_sweeps;
+      double       aggregation_threshold;
+
+      static void
+      declare_parameters(ParameterHandler &prm);
+      void
+      parse_parameters(ParameterHandler &prm);
+    };
+
+    // @sect4{Output}
+    struct Output
+    {
+      bool         write_vtu;
+      double       output_interval;
+      std::string  tip_region_type;
+      unsigned int tip_region_id;
+      std::string  trajectory_file;
+      unsigned int progress_interval;
+
+      static void
+      declare_parameters(ParameterHandler &prm);
+      void
+      parse_parameters(ParameterHandler &prm);
+    };
+
+    // @sect4{All parameters}
+    //
+    // The sum of the above, read from a file (the usual case) or from a
+    // string (tests). The name of the file is kept for error messages
+    // about entries that are valid one by one but not together.
+    struct AllParameters : public Problem,
+                           public Geometry,
+                           public FiniteElement,
+                           public Materials,
+                           public Loads,
+                           public InitialConditions,
+                           public TimeIntegration,
+                           public NonlinearSolver,
+                           public LinearSolver,
+                           public Output
+    {
+      AllParameters() = default;
+
+      static void
+      declare_parameters(ParameterHandler &prm);
+      void
+      parse_parameters(ParameterHandler &prm);
+
+      // Reads and checks a parameter file; throws with a message that names
+      // the file, the entry and the allowed values.
+      void
+      read_file(const std::string &filename);
+      void
+      read_string(const std::string &text);
+
+      std::string source_name = "(string)";
+
+    private:
+      void
+      check_consistency() const;
+    };
+
+  } // namespace Parameters
+} // namespace SoftRobot
+
+#endif

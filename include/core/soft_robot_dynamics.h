@@ -1,0 +1,326 @@
+// @sect3{The SoftRobotDynamics class template}
+//
+// This is the solver: a hyperelastic body that moves under gravity,
+// tractions and its own inertia, with stiffness-proportional damping,
+// integrated in time by the HHT-$\alpha$ method, each step solved by
+// Newton's method with algebraic multigrid. The same class runs the 1D
+// column, the 2D planar model and the 3D body; what differs between the
+// dimensions is the strain energy (see NeoHookeanEnergy) and the mesh.
+//
+// The weak form of the balance of linear momentum in the reference
+// configuration $\Omega_0$, for every test function $\delta\mathbf u$
+// vanishing where the displacement is prescribed, is
+// @f[
+//   \int_{\Omega_0} \rho_0\,\delta\mathbf u\cdot\ddot{\mathbf u}\,dV
+//   + \int_{\Omega_0} \nabla_0\delta\mathbf u :
+//       \left(\mathbf P + \mathbf P_\text{v}\right) dV
+//   = \int_{\Omega_0} \rho_0\,\delta\mathbf u\cdot\mathbf g\,dV
+//   + \int_{\Gamma_\text{N}} \delta\mathbf u\cdot\bar{\mathbf t}\,dA,
+// @f]
+// with the elastic stress $\mathbf P = \mathbf F\mathbf S$ and the viscous
+// stress of stiffness-proportional (Rayleigh) damping,
+// @f[
+//   \mathbf P_\text{v} = \zeta\,\frac{\partial\mathbf P}{\partial\mathbf F}
+//   : \dot{\mathbf F}
+//   = \zeta\left(\dot{\mathbf F}\mathbf S
+//     + \mathbf F\left(\mathcal C : \dot{\mathbf E}\right)\right),
+//   \qquad \dot{\mathbf E} = \mathrm{sym}(\mathbf F^T\dot{\mathbf F}),
+// @f]
+// whose discrete form is exactly $\zeta\,\mathbf K(\mathbf u)\,\mathbf v$,
+// the damping matrix $\mathbf C = \zeta\mathbf K$ of the reference study,
+// evaluated with the current tangent stiffness.
+//
+// For the reduced models every integral carries the material's `Section`
+// factor (cross-section area in 1D, thickness in 2D).
+
+#ifndef soft_robot_core_soft_robot_dynamics_h
+#define soft_robot_core_soft_robot_dynamics_h
+
+#include <deal.II/base/conditional_ostream.h>
+#include <deal.II/base/function_parser.h>
+#include <deal.II/base/index_set.h>
+#include <deal.II/base/quadrature.h>
+#include <deal.II/base/timer.h>
+
+#include <deal.II/distributed/shared_tria.h>
+
+#include <deal.II/dofs/dof_handler.h>
+
+#include <deal.II/fe/fe_system.h>
+#include <deal.II/fe/mapping.h>
+
+#include <deal.II/lac/affine_constraints.h>
+#include <deal.II/lac/trilinos_sparse_matrix.h>
+#include <deal.II/lac/trilinos_vector.h>
+
+#include <core/parameters.h>
+#include <material/neo_hookean_energy.h>
+#include <time_integration/hht_stepper.h>
+
+#include <fstream>
+#include <functional>
+#include <memory>
+#include <vector>
+
+namespace SoftRobot
+{
+  using namespace dealii;
+
+  // @sect4{Failure of a time step}
+  //
+  // Thrown when a step cannot be completed with the current time step
+  // (Newton's method did not converge, the linear solver failed, a
+  // quadrature point was inverted). The time loop catches it and cuts the
+  // step back; only when the step would fall below its minimum does the
+  // run end with RunAborted.
+  struct StepFailure : public std::runtime_error
+  {
+    using std::runtime_error::runtime_error;
+  };
+
+  struct RunAborted : public std::runtime_error
+  {
+    using std::runtime_error::runtime_error;
+  };
+
+
+
+  // @sect4{Energies of the motion}
+  //
+  // The terms of the energy balance, all in mJ (= kg mm^2/s^2 * 1e-3 ...
+  // we keep the program's units: kg mm^2 s^-2, i.e. micro-joules).
+  struct EnergyAccount
+  {
+    double kinetic             = 0.; // $\tfrac12\mathbf v^T\mathbf M\mathbf v$
+    double strain              = 0.; // $\int\Psi\,dV$
+    double gravity_potential   = 0.; // $-\int\rho_0\mathbf g\cdot\mathbf u\,dV$
+    double traction_work       = 0.; // work done by the tractions so far
+    double damping_dissipation = 0.; // energy taken by the viscous stress
+    double
+    balance(const double initial_total) const
+    {
+      return kinetic + strain + gravity_potential - traction_work +
+             damping_dissipation - initial_total;
+    }
+  };
+
+
+
+  // A vector-valued function of x and t with dim components from an
+  // expression of the parameter file ('' means zero); errors name the entry.
+  template <int dim>
+  void
+  initialize_vector_function(FunctionParser<dim> &function,
+                             const std::string &  expression,
+                             const std::string &  constants,
+                             const std::string &  entry_name);
+
+
+
+  template <int dim>
+  class SoftRobotDynamics
+  {
+  public:
+    SoftRobotDynamics(const Parameters::AllParameters &parameters,
+                      const MPI_Comm                   mpi_communicator);
+    ~SoftRobotDynamics();
+
+    // The whole simulation: mesh, initial state, time loop, output.
+    void
+    run();
+
+    // @sect4{Pieces of the simulation for tests and studies}
+    //
+    // These are the phases run() calls; tests use them to check the
+    // solver one piece at a time.
+    void
+    make_grid();
+    void
+    setup_system();
+    // Equilibrium under the loads at time $t$ (load-stepped Newton).
+    void
+    solve_static_equilibrium(const double time);
+    // The linearised operators at the current displacement: tangent
+    // stiffness and mass matrix (for eigenfrequency checks).
+    const TrilinosWrappers::SparseMatrix &
+    tangent_stiffness_matrix();
+    const TrilinosWrappers::SparseMatrix &
+    mass_matrix() const
+    {
+      return mass;
+    }
+    const DoFHandler<dim> &
+    get_dof_handler() const
+    {
+      return dof_handler;
+    }
+    const AffineConstraints<double> &
+    get_constraints() const
+    {
+      return constraints;
+    }
+    const TrilinosWrappers::MPI::Vector &
+    displacement() const
+    {
+      return current.u;
+    }
+    // Mean displacement and velocity of the tip region (see Output/Tip
+    // region), and the energies of the current state.
+    std::pair<Tensor<1, dim>, Tensor<1, dim>>
+    tip_motion() const;
+    const EnergyAccount &
+    energies() const
+    {
+      return energy;
+    }
+    double
+    time() const
+    {
+      return current.time;
+    }
+    // Initial state, then steps of the nominal size until the end time; the
+    // same as run() without any output.
+    void
+    initialize_state();
+    bool
+    advance_one_step();
+    // The statistics of the run so far.
+    unsigned int
+    n_steps() const
+    {
+      return step_number;
+    }
+    unsigned int
+    n_newton_iterations() const
+    {
+      return total_newton_iterations;
+    }
+
+  private:
+    // @sect4{The state of the motion}
+    //
+    // Displacement, velocity, acceleration at one time level, and the
+    // vectors of internal and external forces evaluated there, which the
+    // HHT equation needs again at the next step.
+    struct State
+    {
+      double                        time = 0.;
+      TrilinosWrappers::MPI::Vector u, v, a;
+      TrilinosWrappers::MPI::Vector internal_force, external_force;
+      TrilinosWrappers::MPI::Vector damping_force;
+    };
+
+    // What assemble_system() computes besides the matrix and residual.
+    struct AssemblyResult
+    {
+      double strain_energy        = 0.;
+      double min_jacobian         = std::numeric_limits<double>::max();
+      bool   inverted_point_found = false;
+    };
+
+    // The phases of one time step, in the order they are called.
+    void
+    assemble_mass_matrix();
+    void
+    assemble_external_force(const double                   time,
+                            const double                   load_factor,
+                            TrilinosWrappers::MPI::Vector &force) const;
+    AssemblyResult
+    assemble_internal_force(const TrilinosWrappers::MPI::Vector &u,
+                            const TrilinosWrappers::MPI::Vector &v,
+                            const bool                           with_matrix,
+                            const double                         velocity_coefficient,
+                            TrilinosWrappers::MPI::Vector &      internal_force,
+                            TrilinosWrappers::MPI::Vector *      damping_force);
+    void
+    solve_nonlinear_timestep(const double dt);
+    unsigned int
+    solve_linear_system(TrilinosWrappers::SparseMatrix &     matrix,
+                        const TrilinosWrappers::MPI::Vector &rhs,
+                        TrilinosWrappers::MPI::Vector &      solution);
+    void
+    compute_initial_acceleration();
+    void
+    update_energies(const AssemblyResult &assembly);
+
+    // Newton's method for $\mathbf r(\mathbf u) = 0$, where `evaluate`
+    // assembles the residual and the tangent matrix at a trial $\mathbf u$.
+    using ResidualEvaluator =
+      std::function<AssemblyResult(const TrilinosWrappers::MPI::Vector &,
+                                   TrilinosWrappers::MPI::Vector &)>;
+    AssemblyResult
+    newton_solve(TrilinosWrappers::MPI::Vector &u,
+                 const ResidualEvaluator &      evaluate,
+                 const double                   force_scale,
+                 unsigned int &                 iterations);
+    void
+    output_results(const unsigned int output_index);
+    void
+    open_trajectory_file();
+    void
+    write_trajectory_line();
+
+    // The HHT residual $\mathbf r(\mathbf u_{n+1})$ for a trial
+    // displacement; returns the results of the assembly.
+    AssemblyResult
+    evaluate_residual(const TrilinosWrappers::MPI::Vector &u_trial,
+                      const double                         dt,
+                      const bool                           with_matrix,
+                      TrilinosWrappers::MPI::Vector &      residual);
+
+    // The scalar $\zeta$, $\rho_0$, section factor per cell.
+    const Parameters::Material &
+    material_of(const typename DoFHandler<dim>::active_cell_iterator &cell) const;
+
+    const Parameters::AllParameters parameters;
+
+    MPI_Comm           mpi_communicator;
+    ConditionalOStream pcout;
+    mutable TimerOutput computing_timer;
+
+    parallel::shared::Triangulation<dim> triangulation;
+    std::unique_ptr<Mapping<dim>>        mapping;
+    std::unique_ptr<FESystem<dim>>       fe;
+    DoFHandler<dim>                      dof_handler;
+    std::unique_ptr<Quadrature<dim>>     cell_quadrature;
+    std::unique_ptr<Quadrature<dim - 1>> face_quadrature;
+    bool                                 simplex_mesh = false;
+
+    IndexSet                  locally_owned_dofs;
+    IndexSet                  locally_relevant_dofs;
+    AffineConstraints<double> constraints;
+
+    std::map<types::material_id, NeoHookeanEnergy<dim>> materials;
+    std::map<types::material_id, double>                densities;
+
+    HHTStepper                   stepper;
+    mutable FunctionParser<dim>  traction_function;
+    Tensor<1, dim>               gravity;
+
+    TrilinosWrappers::SparseMatrix mass;
+    TrilinosWrappers::MPI::Vector  gravity_force;
+    TrilinosWrappers::SparseMatrix system_matrix;
+    State                          current;
+    State                          previous;
+
+    // The rigid-body modes of the mesh, the near null space for ML.
+    std::vector<std::vector<double>> rigid_body_modes;
+
+    EnergyAccount energy;
+    double        initial_total_energy = 0.;
+
+    double       time_step;
+    unsigned int step_number                = 0;
+    unsigned int steps_since_cutback        = 0;
+    unsigned int total_newton_iterations    = 0;
+    unsigned int total_linear_iterations    = 0;
+    unsigned int total_cutbacks             = 0;
+    unsigned int last_newton_iterations     = 0;
+    double       last_residual              = 0.;
+
+    std::ofstream                                    trajectory;
+    std::vector<std::pair<double, std::string>>      pvd_records;
+  };
+} // namespace SoftRobot
+
+#endif

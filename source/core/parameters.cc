@@ -1,0 +1,684 @@
+#include <deal.II/base/exceptions.h>
+#include <deal.II/base/utilities.h>
+
+#include <core/parameters.h>
+
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <limits>
+
+namespace SoftRobot
+{
+  namespace Parameters
+  {
+    // @sect4{Problem}
+    void
+    Problem::declare_parameters(ParameterHandler &prm)
+    {
+      prm.enter_subsection("Problem");
+      prm.declare_entry("Dimension",
+                        "3",
+                        Patterns::Integer(1, 3),
+                        "Space dimension of the model: 1 for the column "
+                        "(axial motion only), 2 for the planar model, 3 for "
+                        "the full body.");
+      prm.declare_entry("Output directory",
+                        "output",
+                        Patterns::Anything(),
+                        "Directory for the VTU files, the PVD record and the "
+                        "tip trajectory. It is created if it does not exist.");
+      prm.leave_subsection();
+    }
+
+    void
+    Problem::parse_parameters(ParameterHandler &prm)
+    {
+      prm.enter_subsection("Problem");
+      dimension        = prm.get_integer("Dimension");
+      output_directory = prm.get("Output directory");
+      prm.leave_subsection();
+    }
+
+
+
+    // @sect4{Geometry}
+    void
+    Geometry::declare_parameters(ParameterHandler &prm)
+    {
+      prm.enter_subsection("Geometry");
+      prm.declare_entry("Mesh source",
+                        "generator",
+                        Patterns::Selection("generator|file"),
+                        "Where the mesh comes from: one of deal.II's "
+                        "GridGenerator functions, or a gmsh file.");
+      prm.declare_entry("Generator",
+                        "subdivided_hyper_rectangle",
+                        Patterns::Anything(),
+                        "Name of a GridGenerator function, as accepted by "
+                        "GridGenerator::generate_from_name_and_arguments().");
+      prm.declare_entry("Generator arguments",
+                        "1: 0: 1: true",
+                        Patterns::Anything(),
+                        "Arguments of that function, separated by colons; "
+                        "points and vectors as comma-separated coordinates. "
+                        "For subdivided_hyper_rectangle: repetitions: lower "
+                        "corner: upper corner: colorize, e.g. "
+                        "'4, 1, 1: 0, 0, 0: 4, 1, 1: true' in 3D.");
+      prm.declare_entry("Mesh file",
+                        "",
+                        Patterns::Anything(),
+                        "A gmsh .msh file (format 2.2 or 4.1), relative to "
+                        "the directory the program runs in. Physical volume "
+                        "tags become material ids, physical surface tags "
+                        "boundary ids.");
+      prm.declare_entry("Global refinements",
+                        "0",
+                        Patterns::Integer(0, 10),
+                        "Uniform refinements of the mesh after it is made.");
+      prm.declare_entry("Convert to simplices",
+                        "false",
+                        Patterns::Bool(),
+                        "Split every quadrilateral or hexahedron of a "
+                        "generated mesh into triangles or tetrahedra.");
+      prm.declare_entry("Random distortion",
+                        "0",
+                        Patterns::Double(0, 0.4),
+                        "Move interior vertices randomly by up to this "
+                        "fraction of the adjacent edge lengths (tests of "
+                        "distorted meshes).");
+      prm.declare_entry("Material id function",
+                        "",
+                        Patterns::Anything(),
+                        "If not empty: an expression in x, y, z whose value "
+                        "at a cell's centre, rounded to an integer, becomes "
+                        "the cell's material id, e.g. 'x > 89.25 ? 2 : 1'. "
+                        "Empty: keep the ids of the mesh (1 for generated "
+                        "meshes).");
+      prm.declare_entry("Model fraction",
+                        "1",
+                        Patterns::Double(0, 1),
+                        "Fraction of the physical body the mesh represents: "
+                        "0.25 for a quarter model with two symmetry planes, "
+                        "0.5 for a half model. Only used to convert the "
+                        "'Mass' of a material into a density.");
+      prm.leave_subsection();
+    }
+
+    void
+    Geometry::parse_parameters(ParameterHandler &prm)
+    {
+      prm.enter_subsection("Geometry");
+      mesh_source          = prm.get("Mesh source");
+      generator_name       = prm.get("Generator");
+      generator_arguments  = prm.get("Generator arguments");
+      mesh_file            = prm.get("Mesh file");
+      global_refinements   = prm.get_integer("Global refinements");
+      convert_to_simplices = prm.get_bool("Convert to simplices");
+      distortion           = prm.get_double("Random distortion");
+      material_id_function = prm.get("Material id function");
+      model_fraction       = prm.get_double("Model fraction");
+      prm.leave_subsection();
+    }
+
+
+
+    // @sect4{Finite element}
+    void
+    FiniteElement::declare_parameters(ParameterHandler &prm)
+    {
+      prm.enter_subsection("Finite element");
+      prm.declare_entry("Polynomial degree",
+                        "2",
+                        Patterns::Integer(1, 2),
+                        "Degree p of the Lagrange elements of the "
+                        "displacement (FE_Q on quadrilaterals and "
+                        "hexahedra, FE_SimplexP on triangles and "
+                        "tetrahedra).");
+      prm.declare_entry("Quadrature points",
+                        "0",
+                        Patterns::Integer(0, 5),
+                        "Gauss points per direction (for simplices: the "
+                        "degree of exactness minus one, as QGaussSimplex "
+                        "counts). 0 chooses p + 1.");
+      prm.leave_subsection();
+    }
+
+    void
+    FiniteElement::parse_parameters(ParameterHandler &prm)
+    {
+      prm.enter_subsection("Finite element");
+      degree            = prm.get_integer("Polynomial degree");
+      quadrature_points = prm.get_integer("Quadrature points");
+      prm.leave_subsection();
+    }
+
+
+
+    // @sect4{Materials}
+    void
+    Materials::declare_parameters(ParameterHandler &prm)
+    {
+      for (unsigned int id = 0; id <= max_material_id; ++id)
+        {
+          prm.enter_subsection("Material " + std::to_string(id));
+          prm.declare_entry("Name",
+                            "",
+                            Patterns::Anything(),
+                            "Name of the material of the cells with this "
+                            "material id. A material with an empty name is "
+                            "not defined; a mesh that uses its id is an "
+                            "error.");
+          prm.declare_entry("Shear modulus",
+                            "100",
+                            Patterns::Double(1e-12),
+                            "Initial shear modulus mu of the neo-Hookean "
+                            "energy, kPa (= kg/(mm s^2)).");
+          prm.declare_entry("Bulk modulus",
+                            "10000",
+                            Patterns::Double(1e-12),
+                            "Bulk modulus kappa, kPa. Used in 3D only; the "
+                            "reduced 1D and 2D models are incompressible.");
+          prm.declare_entry("Density",
+                            "1.1e-6",
+                            Patterns::Double(0),
+                            "Mass density in the reference configuration, "
+                            "kg/mm^3. Ignored if 'Mass' is positive.");
+          prm.declare_entry("Mass",
+                            "0",
+                            Patterns::Double(0),
+                            "If positive: the mass of this material in the "
+                            "whole physical body, kg. The density is then "
+                            "set so that the meshed region (times its "
+                            "section, divided by the model fraction) weighs "
+                            "this much.");
+          prm.declare_entry("Damping coefficient",
+                            "0",
+                            Patterns::Double(0, 10),
+                            "zeta of the stiffness-proportional Rayleigh "
+                            "damping C = zeta K, s. A mode of circular "
+                            "frequency omega gets the damping ratio "
+                            "xi = zeta omega / 2.");
+          prm.declare_entry("Section",
+                            "1",
+                            Patterns::Double(1e-12),
+                            "dim = 1: cross-section area of the column, "
+                            "mm^2; dim = 2: out-of-plane thickness, mm; "
+                            "dim = 3: must be 1.");
+          prm.leave_subsection();
+        }
+    }
+
+    void
+    Materials::parse_parameters(ParameterHandler &prm)
+    {
+      by_id.clear();
+      for (unsigned int id = 0; id <= max_material_id; ++id)
+        {
+          prm.enter_subsection("Material " + std::to_string(id));
+          Material material;
+          material.name = prm.get("Name");
+          if (!material.name.empty())
+            {
+              material.shear_modulus = prm.get_double("Shear modulus");
+              material.bulk_modulus  = prm.get_double("Bulk modulus");
+              material.density       = prm.get_double("Density");
+              material.mass          = prm.get_double("Mass");
+              material.damping_zeta  = prm.get_double("Damping coefficient");
+              material.section       = prm.get_double("Section");
+              by_id[id]              = material;
+            }
+          prm.leave_subsection();
+        }
+    }
+
+
+
+    // @sect4{Loads and constraints}
+    void
+    Loads::declare_parameters(ParameterHandler &prm)
+    {
+      prm.enter_subsection("Loads and constraints");
+      prm.declare_entry("Gravity",
+                        "0, 0, 0",
+                        Patterns::List(Patterns::Double(), 3, 3),
+                        "Gravitational acceleration, mm/s^2, three "
+                        "components of which the first dim are used. The "
+                        "actuator's axis is x, pointing down: 9810, 0, 0.");
+      prm.declare_entry("Fixed components",
+                        "",
+                        Patterns::Map(Patterns::Integer(0),
+                                      Patterns::Anything()),
+                        "Homogeneous Dirichlet conditions: boundary id, "
+                        "colon, the fixed displacement components as letters "
+                        "from 'xyz'; e.g. '1: xyz, 3: y, 4: z' clamps "
+                        "boundary 1 and makes 3 and 4 symmetry planes "
+                        "with normals y and z.");
+      prm.declare_entry("Traction boundary ids",
+                        "",
+                        Patterns::List(Patterns::Integer(0)),
+                        "Boundary ids on which the traction below acts.");
+      prm.declare_entry("Traction",
+                        "",
+                        Patterns::Anything(),
+                        "Nominal traction (force per reference area, kPa) "
+                        "as dim expressions of x, y, z, t separated by "
+                        "semicolons; it is a dead load. Empty: zero.");
+      prm.declare_entry("Function constants",
+                        "",
+                        Patterns::Anything(),
+                        "Constants for all expressions of this file, e.g. "
+                        "'F0=1.5, L=10'.");
+      prm.leave_subsection();
+    }
+
+    void
+    Loads::parse_parameters(ParameterHandler &prm)
+    {
+      prm.enter_subsection("Loads and constraints");
+      gravity = Utilities::string_to_double(
+        Utilities::split_string_list(prm.get("Gravity")));
+      fixed_components.clear();
+      for (const auto &entry :
+           Utilities::split_string_list(prm.get("Fixed components"), ','))
+        {
+          const auto pair = Utilities::split_string_list(entry, ':');
+          fixed_components[Utilities::string_to_int(pair[0])] = pair[1];
+        }
+      traction_boundary_ids.clear();
+      for (const int id : Utilities::string_to_int(
+             Utilities::split_string_list(prm.get("Traction boundary ids"))))
+        traction_boundary_ids.push_back(id);
+      traction_expression = prm.get("Traction");
+      constants           = prm.get("Function constants");
+      prm.leave_subsection();
+    }
+
+
+
+    // @sect4{Initial conditions}
+    void
+    InitialConditions::declare_parameters(ParameterHandler &prm)
+    {
+      prm.enter_subsection("Initial conditions");
+      prm.declare_entry("Type",
+                        "expressions",
+                        Patterns::Selection("expressions|static equilibrium"),
+                        "'expressions': the initial displacement and "
+                        "velocity below. 'static equilibrium': the initial "
+                        "displacement is the equilibrium under the loads at "
+                        "t = 0 (gravity and tractions, with the expression "
+                        "below as the starting guess), and the velocity is "
+                        "the expression below.");
+      prm.declare_entry("Displacement",
+                        "",
+                        Patterns::Anything(),
+                        "Initial displacement, mm: dim expressions of x, y, "
+                        "z separated by semicolons. Empty: zero.");
+      prm.declare_entry("Velocity",
+                        "",
+                        Patterns::Anything(),
+                        "Initial velocity, mm/s, likewise.");
+      prm.declare_entry("Load steps",
+                        "4",
+                        Patterns::Integer(1, 1000),
+                        "Number of equal increments in which the loads are "
+                        "applied for the static equilibrium.");
+      prm.leave_subsection();
+    }
+
+    void
+    InitialConditions::parse_parameters(ParameterHandler &prm)
+    {
+      prm.enter_subsection("Initial conditions");
+      type                    = prm.get("Type");
+      displacement_expression = prm.get("Displacement");
+      velocity_expression     = prm.get("Velocity");
+      load_steps              = prm.get_integer("Load steps");
+      prm.leave_subsection();
+    }
+
+
+
+    // @sect4{Time integration}
+    void
+    TimeIntegration::declare_parameters(ParameterHandler &prm)
+    {
+      prm.enter_subsection("Time integration");
+      prm.declare_entry("End time",
+                        "1",
+                        Patterns::Double(0, 1e6),
+                        "Duration of the simulation, s.");
+      prm.declare_entry("Time step",
+                        "0.01",
+                        Patterns::Double(1e-12, 1e3),
+                        "Nominal time step, s. It is halved when Newton's "
+                        "method fails and grows back afterwards.");
+      prm.declare_entry("Minimum time step",
+                        "1e-6",
+                        Patterns::Double(1e-15, 1e3),
+                        "The run stops with an error (keeping the output "
+                        "written so far) when a step would need to be "
+                        "smaller than this, s.");
+      prm.declare_entry("Alpha",
+                        "-0.25",
+                        Patterns::Double(-1. / 3., 0),
+                        "HHT parameter alpha in [-1/3, 0]; 0 is the "
+                        "trapezoidal rule, more negative values damp high "
+                        "frequencies more.");
+      prm.declare_entry("Beta",
+                        "-1",
+                        Patterns::Double(-1, 1),
+                        "Newmark beta; a negative value selects the "
+                        "standard (1 - alpha)^2 / 4. The reference study "
+                        "used 0.4.");
+      prm.declare_entry("Gamma",
+                        "-1",
+                        Patterns::Double(-1, 1.5),
+                        "Newmark gamma; a negative value selects the "
+                        "standard 1/2 - alpha. The reference study used "
+                        "0.75.");
+      prm.declare_entry("Regrowth steps",
+                        "4",
+                        Patterns::Integer(1, 1000),
+                        "After a cut back, the time step is doubled again "
+                        "after this many successful steps (never beyond "
+                        "the nominal step).");
+      prm.leave_subsection();
+    }
+
+    void
+    TimeIntegration::parse_parameters(ParameterHandler &prm)
+    {
+      prm.enter_subsection("Time integration");
+      end_time          = prm.get_double("End time");
+      time_step         = prm.get_double("Time step");
+      minimum_time_step = prm.get_double("Minimum time step");
+      alpha             = prm.get_double("Alpha");
+      beta              = prm.get_double("Beta");
+      gamma             = prm.get_double("Gamma");
+      regrowth_steps    = prm.get_integer("Regrowth steps");
+      prm.leave_subsection();
+    }
+
+
+
+    // @sect4{Newton's method}
+    void
+    NonlinearSolver::declare_parameters(ParameterHandler &prm)
+    {
+      prm.enter_subsection("Nonlinear solver");
+      prm.declare_entry("Max iterations",
+                        "12",
+                        Patterns::Integer(1, 200),
+                        "Newton iterations per step before the step is "
+                        "declared failed and cut back.");
+      prm.declare_entry("Absolute tolerance",
+                        "1e-8",
+                        Patterns::Double(0),
+                        "Converged when the l2 norm of the residual (mN) "
+                        "is below this ...");
+      prm.declare_entry("Relative tolerance",
+                        "1e-9",
+                        Patterns::Double(0, 1),
+                        "... or below this fraction of the norm of the "
+                        "external forces and of the step's first residual, "
+                        "whichever is larger.");
+      prm.declare_entry("Line search",
+                        "true",
+                        Patterns::Bool(),
+                        "Backtrack along the Newton direction until the "
+                        "residual decreases.");
+      prm.declare_entry("Max line search steps",
+                        "5",
+                        Patterns::Integer(0, 30),
+                        "Halvings of the Newton step before the step fails.");
+      prm.leave_subsection();
+    }
+
+    void
+    NonlinearSolver::parse_parameters(ParameterHandler &prm)
+    {
+      prm.enter_subsection("Nonlinear solver");
+      max_iterations        = prm.get_integer("Max iterations");
+      absolute_tolerance    = prm.get_double("Absolute tolerance");
+      relative_tolerance    = prm.get_double("Relative tolerance");
+      line_search           = prm.get_bool("Line search");
+      max_line_search_steps = prm.get_integer("Max line search steps");
+      prm.leave_subsection();
+    }
+
+
+
+    // @sect4{Linear solver}
+    void
+    LinearSolver::declare_parameters(ParameterHandler &prm)
+    {
+      prm.enter_subsection("Linear solver");
+      prm.declare_entry("Solver",
+                        "CG",
+                        Patterns::Selection("CG|GMRES|Direct"),
+                        "CG or GMRES preconditioned by algebraic multigrid "
+                        "(Trilinos ML), or a sparse direct solver (Amesos "
+                        "KLU) for small problems.");
+      prm.declare_entry("Relative tolerance",
+                        "1e-8",
+                        Patterns::Double(1e-16, 1),
+                        "Iterative solvers stop when the residual has "
+                        "dropped by this factor.");
+      prm.declare_entry("Max iterations",
+                        "1000",
+                        Patterns::Integer(1),
+                        "Iterative solvers fail (and the step is cut back) "
+                        "after this many iterations.");
+      prm.declare_entry("AMG smoother sweeps",
+                        "2",
+                        Patterns::Integer(1, 10),
+                        "Chebyshev smoother sweeps on each AMG level.");
+      prm.declare_entry("AMG aggregation threshold",
+                        "1e-4",
+                        Patterns::Double(0, 1),
+                        "Drop tolerance of ML's aggregation.");
+      prm.leave_subsection();
+    }
+
+    void
+    LinearSolver::parse_parameters(ParameterHandler &prm)
+    {
+      prm.enter_subsection("Linear solver");
+      type                  = prm.get("Solver");
+      relative_tolerance    = prm.get_double("Relative tolerance");
+      max_iterations        = prm.get_integer("Max iterations");
+      smoother_sweeps       = prm.get_integer("AMG smoother sweeps");
+      aggregation_threshold = prm.get_double("AMG aggregation threshold");
+      prm.leave_subsection();
+    }
+
+
+
+    // @sect4{Output}
+    void
+    Output::declare_parameters(ParameterHandler &prm)
+    {
+      prm.enter_subsection("Output");
+      prm.declare_entry("Write VTU",
+                        "true",
+                        Patterns::Bool(),
+                        "Write the fields for ParaView (VTU files and a PVD "
+                        "record with the physical times).");
+      prm.declare_entry("Output interval",
+                        "0.05",
+                        Patterns::Double(0),
+                        "Time between two VTU outputs, s; 0 writes every "
+                        "step.");
+      prm.declare_entry("Tip region",
+                        "boundary 5",
+                        Patterns::Anything(),
+                        "Where the tip trajectory is measured: 'boundary "
+                        "<id>' (mean displacement and velocity of that "
+                        "surface) or 'material <id>' (centre of mass of "
+                        "that region).");
+      prm.declare_entry("Trajectory file",
+                        "tip_trajectory.csv",
+                        Patterns::Anything(),
+                        "CSV file in the output directory with one row per "
+                        "time step: time, step, tip displacement and "
+                        "velocity, energies, Newton iterations.");
+      prm.declare_entry("Progress interval",
+                        "10",
+                        Patterns::Integer(0),
+                        "Print a progress line every this many steps (0: "
+                        "never).");
+      prm.leave_subsection();
+    }
+
+    void
+    Output::parse_parameters(ParameterHandler &prm)
+    {
+      prm.enter_subsection("Output");
+      write_vtu         = prm.get_bool("Write VTU");
+      output_interval   = prm.get_double("Output interval");
+      trajectory_file   = prm.get("Trajectory file");
+      progress_interval = prm.get_integer("Progress interval");
+      const auto words  = Utilities::split_string_list(prm.get("Tip region"), ' ');
+      AssertThrow(words.size() == 2 && (words[0] == "boundary" || words[0] == "material"),
+                  ExcMessage("Output/Tip region must be 'boundary <id>' or "
+                             "'material <id>', not '" + prm.get("Tip region") + "'."));
+      tip_region_type = words[0];
+      tip_region_id   = Utilities::string_to_int(words[1]);
+      prm.leave_subsection();
+    }
+
+
+
+    // @sect4{AllParameters}
+    void
+    AllParameters::declare_parameters(ParameterHandler &prm)
+    {
+      Problem::declare_parameters(prm);
+      Geometry::declare_parameters(prm);
+      FiniteElement::declare_parameters(prm);
+      Materials::declare_parameters(prm);
+      Loads::declare_parameters(prm);
+      InitialConditions::declare_parameters(prm);
+      TimeIntegration::declare_parameters(prm);
+      NonlinearSolver::declare_parameters(prm);
+      LinearSolver::declare_parameters(prm);
+      Output::declare_parameters(prm);
+    }
+
+    void
+    AllParameters::parse_parameters(ParameterHandler &prm)
+    {
+      Problem::parse_parameters(prm);
+      Geometry::parse_parameters(prm);
+      FiniteElement::parse_parameters(prm);
+      Materials::parse_parameters(prm);
+      Loads::parse_parameters(prm);
+      InitialConditions::parse_parameters(prm);
+      TimeIntegration::parse_parameters(prm);
+      NonlinearSolver::parse_parameters(prm);
+      LinearSolver::parse_parameters(prm);
+      Output::parse_parameters(prm);
+    }
+
+
+
+    // ParameterHandler's own messages name the file, the line, the entry
+    // and its pattern when a value is out of range. We add the file name to
+    // the messages about combinations of entries that it cannot check.
+    void
+    AllParameters::read_file(const std::string &filename)
+    {
+      std::ifstream file(filename);
+      AssertThrow(file,
+                  ExcMessage("Cannot open the parameter file '" + filename + "'."));
+      source_name = filename;
+
+      // File names in the parameter file (include statements, the mesh)
+      // are relative to the directory of the parameter file, so that a
+      // scene runs from anywhere. The line structure is kept, so that
+      // ParameterHandler's messages still give the right line numbers.
+      const std::filesystem::path directory =
+        std::filesystem::path(filename).parent_path();
+      std::stringstream text;
+      std::string       line;
+      while (std::getline(file, line))
+        {
+          std::istringstream words(line);
+          std::string        keyword, included;
+          words >> keyword >> included;
+          if ((keyword == "include" || keyword == "INCLUDE") &&
+              std::filesystem::path(included).is_relative())
+            line = "include " + (directory / included).string();
+          text << line << '\n';
+        }
+
+      ParameterHandler prm;
+      declare_parameters(prm);
+      prm.parse_input(text, filename);
+      parse_parameters(prm);
+      if (!mesh_file.empty() && std::filesystem::path(mesh_file).is_relative())
+        mesh_file = (directory / mesh_file).string();
+      check_consistency();
+    }
+
+    void
+    AllParameters::read_string(const std::string &text)
+    {
+      ParameterHandler prm;
+      declare_parameters(prm);
+      prm.parse_input_from_string(text);
+      parse_parameters(prm);
+      check_consistency();
+    }
+
+
+
+    void
+    AllParameters::check_consistency() const
+    {
+      const std::string where = "In the parameter file '" + source_name + "': ";
+      AssertThrow(time_step >= minimum_time_step,
+                  ExcMessage(where + "Time integration/Time step (" +
+                             std::to_string(time_step) +
+                             ") must not be smaller than Minimum time step (" +
+                             std::to_string(minimum_time_step) + ")."));
+      AssertThrow((beta < 0) == (gamma < 0),
+                  ExcMessage(where + "Time integration/Beta and Gamma must "
+                             "be given both (values in (0, 1] and [0, 1.5]) "
+                             "or neither (negative values)."));
+      AssertThrow(!by_id.empty(),
+                  ExcMessage(where + "no material is defined: give at least "
+                             "one subsection 'Material <id>' (id 0 to " +
+                             std::to_string(max_material_id) +
+                             ") with a non-empty Name."));
+      for (const auto &[id, material] : by_id)
+        AssertThrow(dimension != 3 || material.section == 1.,
+                    ExcMessage(where + "Material " + std::to_string(id) +
+                               "/Section must be 1 in 3D (it is the area or "
+                               "thickness of the reduced 1D and 2D models)."));
+      for (const auto &[id, letters] : fixed_components)
+        {
+          AssertThrow(!letters.empty() &&
+                        letters.find_first_not_of(std::string("xyz").substr(0, dimension)) ==
+                          std::string::npos,
+                      ExcMessage(where + "Loads and constraints/Fixed "
+                                 "components: boundary " + std::to_string(id) +
+                                 " has '" + letters + "', but only the letters '" +
+                                 std::string("xyz").substr(0, dimension) +
+                                 "' are allowed in " + std::to_string(dimension) +
+                                 "D."));
+        }
+      AssertThrow(mesh_source != "file" || !mesh_file.empty(),
+                  ExcMessage(where + "Geometry/Mesh file must name a gmsh "
+                             "file when Mesh source = file."));
+      AssertThrow(mesh_source != "file" || std::ifstream(mesh_file),
+                  ExcMessage(where + "Geometry/Mesh file: cannot open '" +
+                             mesh_file + "'."));
+    }
+
+
+
+  } // namespace Parameters
+} // namespace SoftRobot

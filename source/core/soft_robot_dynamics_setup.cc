@@ -1,0 +1,593 @@
+// @sect3{Setting up: mesh, finite element, constraints, matrices}
+//
+// This file holds the phases of SoftRobotDynamics that run once, before the
+// time loop: the constructor, make_grid(), setup_system() and the mass
+// matrix, and run(), which strings all phases together.
+
+#include <deal.II/base/function_parser.h>
+#include <deal.II/base/quadrature_lib.h>
+
+#include <deal.II/dofs/dof_tools.h>
+
+#include <deal.II/fe/fe_q.h>
+#include <deal.II/fe/fe_simplex_p.h>
+#include <deal.II/fe/fe_values.h>
+#include <deal.II/fe/mapping_fe.h>
+#include <deal.II/fe/mapping_q.h>
+
+#include <deal.II/grid/grid_generator.h>
+#include <deal.II/grid/grid_in.h>
+#include <deal.II/grid/grid_tools.h>
+
+#include <deal.II/lac/dynamic_sparsity_pattern.h>
+#include <deal.II/lac/sparsity_tools.h>
+
+#include <deal.II/numerics/vector_tools.h>
+
+#include <core/soft_robot_dynamics.h>
+
+#include <filesystem>
+#include <set>
+
+namespace SoftRobot
+{
+  namespace
+  {
+    // The HHT stepper as the parameter file describes it: $\beta$ and
+    // $\gamma$ from $\alpha$ unless both are given.
+    HHTStepper
+    make_stepper(const Parameters::TimeIntegration &p)
+    {
+      return (p.beta < 0) ? HHTStepper(p.alpha) :
+                            HHTStepper(p.alpha, p.beta, p.gamma);
+    }
+
+    // The names of the coordinate variables of the expressions.
+    template <int dim>
+    std::string
+    coordinate_names()
+    {
+      return FunctionParser<dim>::default_variable_names() + ",t";
+    }
+
+    // Constants of the expressions as a map, from 'a=1, b=2'.
+    std::map<std::string, double>
+    parse_constants(const std::string &text)
+    {
+      std::map<std::string, double> constants;
+      for (const auto &entry : Utilities::split_string_list(text, ','))
+        {
+          const auto pair = Utilities::split_string_list(entry, '=');
+          AssertThrow(pair.size() == 2,
+                      ExcMessage("Loads and constraints/Function constants: "
+                                 "expected 'name=value', got '" + entry + "'."));
+          constants[pair[0]] = Utilities::string_to_double(pair[1]);
+        }
+      return constants;
+    }
+  } // namespace
+
+
+
+  // A vector function of space and time with one component per dimension,
+  // from an expression as the parameter file gives it; an empty one is
+  // zero. The error message names the entry.
+  template <int dim>
+  void
+  initialize_vector_function(FunctionParser<dim> &function,
+                             const std::string &  expression,
+                             const std::string &  constants,
+                             const std::string &  entry_name)
+  {
+    std::string text = expression;
+    if (text.empty())
+      {
+        text = "0";
+        for (unsigned int d = 1; d < dim; ++d)
+          text += "; 0";
+      }
+    const unsigned int n_components =
+      Utilities::split_string_list(text, ';').size();
+    AssertThrow(n_components == dim,
+                ExcMessage(entry_name + " must have " + std::to_string(dim) +
+                           " components separated by ';' in " +
+                           std::to_string(dim) + "D, but '" + expression +
+                           "' has " + std::to_string(n_components) + "."));
+    try
+      {
+        function.initialize(coordinate_names<dim>(),
+                            text,
+                            parse_constants(constants),
+                            /*time_dependent=*/true);
+      }
+    catch (std::exception &error)
+      {
+        AssertThrow(false,
+                    ExcMessage(entry_name + ": cannot parse '" + expression +
+                               "': " + error.what()));
+      }
+  }
+
+
+
+  // @sect4{SoftRobotDynamics::SoftRobotDynamics}
+  //
+  // The triangulation is a parallel::shared::Triangulation: every process
+  // holds the whole (small) mesh, and the cells are partitioned with METIS.
+  // Unlike the p4est-based distributed triangulation it supports 1D meshes
+  // and tetrahedral meshes from gmsh, which the actuator needs.
+  template <int dim>
+  SoftRobotDynamics<dim>::SoftRobotDynamics(
+    const Parameters::AllParameters &parameters,
+    const MPI_Comm                   mpi_communicator)
+    : parameters(parameters)
+    , mpi_communicator(mpi_communicator)
+    , pcout(std::cout, Utilities::MPI::this_mpi_process(mpi_communicator) == 0)
+    , computing_timer(mpi_communicator,
+                      pcout,
+                      TimerOutput::never,
+                      TimerOutput::wall_times)
+    , triangulation(mpi_communicator)
+    , dof_handler(triangulation)
+    , stepper(make_stepper(parameters))
+    , traction_function(dim)
+    , time_step(parameters.time_step)
+  {
+    AssertThrow(parameters.dimension == dim,
+                ExcMessage("The parameter file asks for dimension " +
+                           std::to_string(parameters.dimension) +
+                           ", but this is SoftRobotDynamics<" +
+                           std::to_string(dim) + ">."));
+    initialize_vector_function(traction_function,
+                               parameters.traction_expression,
+                               parameters.constants,
+                               "Loads and constraints/Traction");
+    for (unsigned int d = 0; d < dim; ++d)
+      gravity[d] = parameters.gravity[d];
+    for (const auto &[id, material] : parameters.by_id)
+      materials.emplace(id,
+                        NeoHookeanEnergy<dim>(material.shear_modulus,
+                                              material.bulk_modulus));
+  }
+
+
+
+  template <int dim>
+  SoftRobotDynamics<dim>::~SoftRobotDynamics()
+  {
+    dof_handler.clear();
+  }
+
+
+
+  // @sect4{SoftRobotDynamics::make_grid}
+  //
+  // The mesh is first built in a serial triangulation, where it can be
+  // converted to simplices or distorted, and then copied into the shared
+  // triangulation, which partitions it. Every material id of the mesh
+  // must have its `Material <id>` subsection, and every boundary id the
+  // parameter file names must exist: both mistakes are caught here, before
+  // anything is written.
+  template <int dim>
+  void
+  SoftRobotDynamics<dim>::make_grid()
+  {
+    TimerOutput::Scope timer_section(computing_timer, "Make grid");
+
+    Triangulation<dim> serial;
+    if (parameters.mesh_source == "generator")
+      {
+        Triangulation<dim> generated;
+        try
+          {
+            GridGenerator::generate_from_name_and_arguments(
+              generated, parameters.generator_name, parameters.generator_arguments);
+          }
+        catch (std::exception &error)
+          {
+            AssertThrow(false,
+                        ExcMessage("In '" + parameters.source_name +
+                                   "': Geometry/Generator '" +
+                                   parameters.generator_name +
+                                   "' with arguments '" +
+                                   parameters.generator_arguments +
+                                   "' failed: " + error.what()));
+          }
+        if (parameters.convert_to_simplices && dim > 1)
+          GridGenerator::convert_hypercube_to_simplex_mesh(generated, serial);
+        else
+          serial.copy_triangulation(generated);
+      }
+    else
+      {
+        GridIn<dim> grid_in;
+        grid_in.attach_triangulation(serial);
+        std::ifstream input(parameters.mesh_file);
+        grid_in.read_msh(input);
+      }
+
+    if (parameters.distortion > 0)
+      GridTools::distort_random(parameters.distortion, serial, true);
+
+    if (!parameters.material_id_function.empty())
+      {
+        FunctionParser<dim> id_function(1);
+        id_function.initialize(FunctionParser<dim>::default_variable_names(),
+                               parameters.material_id_function,
+                               parse_constants(parameters.constants));
+        for (const auto &cell : serial.active_cell_iterators())
+          cell->set_material_id(static_cast<types::material_id>(
+            std::lround(id_function.value(cell->center()))));
+      }
+
+    triangulation.copy_triangulation(serial);
+    triangulation.refine_global(parameters.global_refinements);
+
+    std::set<types::material_id> mesh_materials;
+    std::set<types::boundary_id> mesh_boundaries;
+    for (const auto &cell : triangulation.active_cell_iterators())
+      {
+        mesh_materials.insert(cell->material_id());
+        for (const auto &face : cell->face_iterators())
+          if (face->at_boundary())
+            mesh_boundaries.insert(face->boundary_id());
+      }
+    for (const types::material_id id : mesh_materials)
+      AssertThrow(parameters.by_id.count(id) == 1,
+                  ExcMessage("In '" + parameters.source_name +
+                             "': the mesh has cells with material id " +
+                             std::to_string(id) +
+                             ", but the file has no subsection 'Material " +
+                             std::to_string(id) + "' with a Name."));
+    std::vector<std::pair<unsigned int, std::string>> named_boundaries;
+    for (const auto &entry : parameters.fixed_components)
+      named_boundaries.emplace_back(entry.first, "Loads and constraints/Fixed components");
+    for (const unsigned int id : parameters.traction_boundary_ids)
+      named_boundaries.emplace_back(id, "Loads and constraints/Traction boundary ids");
+    if (parameters.tip_region_type == "boundary")
+      named_boundaries.emplace_back(parameters.tip_region_id, "Output/Tip region");
+    else
+      AssertThrow(mesh_materials.count(parameters.tip_region_id) == 1,
+                  ExcMessage("In '" + parameters.source_name +
+                             "': Output/Tip region names material " +
+                             std::to_string(parameters.tip_region_id) +
+                             ", which no cell of the mesh has."));
+    for (const auto &[id, entry] : named_boundaries)
+      {
+        std::string present;
+        for (const auto b : mesh_boundaries)
+          present += " " + std::to_string(b);
+        AssertThrow(mesh_boundaries.count(id) == 1,
+                    ExcMessage("In '" + parameters.source_name + "': " + entry +
+                               " names boundary id " + std::to_string(id) +
+                               ", which the mesh does not have (it has:" +
+                               present + ")."));
+      }
+
+    // The finite element, mapping and quadrature follow the cell shape.
+    const unsigned int p = parameters.degree;
+    const unsigned int n_q =
+      parameters.quadrature_points > 0 ? parameters.quadrature_points : p + 1;
+    simplex_mesh = (dim > 1) && triangulation.all_reference_cells_are_simplex();
+    AssertThrow(simplex_mesh || triangulation.all_reference_cells_are_hyper_cube(),
+                ExcMessage("Meshes that mix cell shapes are not supported."));
+    if (simplex_mesh)
+      {
+        fe      = std::make_unique<FESystem<dim>>(FE_SimplexP<dim>(p), dim);
+        mapping = std::make_unique<MappingFE<dim>>(FE_SimplexP<dim>(1));
+        cell_quadrature = std::make_unique<QGaussSimplex<dim>>(n_q);
+        face_quadrature = std::make_unique<QGaussSimplex<dim - 1>>(n_q);
+      }
+    else
+      {
+        fe              = std::make_unique<FESystem<dim>>(FE_Q<dim>(p), dim);
+        mapping         = std::make_unique<MappingQ<dim>>(1);
+        cell_quadrature = std::make_unique<QGauss<dim>>(n_q);
+        face_quadrature = std::make_unique<QGauss<dim - 1>>(n_q);
+      }
+
+    pcout << "Mesh: " << triangulation.n_global_active_cells() << ' '
+          << (simplex_mesh ? "simplex" : "hypercube") << " cells, "
+          << mesh_materials.size() << " material(s)" << std::endl;
+  }
+
+
+
+  // @sect4{SoftRobotDynamics::setup_system}
+  //
+  // Degrees of freedom, the constraints of the fixed boundaries, the
+  // sparsity pattern shared by the tangent and the mass matrix, the state
+  // vectors, the densities and the near null space for algebraic multigrid.
+  template <int dim>
+  void
+  SoftRobotDynamics<dim>::setup_system()
+  {
+    TimerOutput::Scope timer_section(computing_timer, "Setup system");
+
+    dof_handler.distribute_dofs(*fe);
+    locally_owned_dofs = dof_handler.locally_owned_dofs();
+    DoFTools::extract_locally_relevant_dofs(dof_handler, locally_relevant_dofs);
+
+    constraints.clear();
+    constraints.reinit(locally_relevant_dofs);
+    const FEValuesExtractors::Vector displacements(0);
+    for (const auto &[boundary_id, letters] : parameters.fixed_components)
+      {
+        std::vector<bool> mask(dim, false);
+        for (const char letter : letters)
+          mask[letter - 'x'] = true;
+        VectorTools::interpolate_boundary_values(*mapping,
+                                                 dof_handler,
+                                                 boundary_id,
+                                                 Functions::ZeroFunction<dim>(dim),
+                                                 constraints,
+                                                 ComponentMask(mask));
+      }
+    constraints.close();
+
+    DynamicSparsityPattern dsp(locally_relevant_dofs);
+    DoFTools::make_sparsity_pattern(dof_handler, dsp, constraints, false);
+    SparsityTools::distribute_sparsity_pattern(dsp,
+                                               locally_owned_dofs,
+                                               mpi_communicator,
+                                               locally_relevant_dofs);
+    system_matrix.reinit(locally_owned_dofs, locally_owned_dofs, dsp, mpi_communicator);
+    mass.reinit(locally_owned_dofs, locally_owned_dofs, dsp, mpi_communicator);
+
+    for (State *state : {&current, &previous})
+      for (TrilinosWrappers::MPI::Vector *vector :
+           {&state->u, &state->v, &state->a, &state->internal_force,
+            &state->external_force, &state->damping_force})
+        vector->reinit(locally_owned_dofs, mpi_communicator);
+
+    // Densities: given, or from the mass of the region. The meshed volume
+    // of a region times its section is the volume of the modelled part of
+    // the body; dividing by the model fraction gives the whole body's.
+    std::map<types::material_id, double> region_volume;
+    {
+      FEValues<dim> fe_values(*mapping, *fe, *cell_quadrature, update_JxW_values);
+      for (const auto &cell : dof_handler.active_cell_iterators())
+        if (cell->is_locally_owned())
+          {
+            fe_values.reinit(cell);
+            for (const unsigned int q : fe_values.quadrature_point_indices())
+              region_volume[cell->material_id()] += fe_values.JxW(q);
+          }
+    }
+    for (const auto &[id, material] : parameters.by_id)
+      {
+        const double volume = Utilities::MPI::sum(region_volume[id], mpi_communicator);
+        if (material.mass > 0)
+          {
+            AssertThrow(volume > 0,
+                        ExcMessage("In '" + parameters.source_name + "': Material " +
+                                   std::to_string(id) + "/Mass is given, but no "
+                                   "cell of the mesh has this material id."));
+            densities[id] =
+              material.mass * parameters.model_fraction / (volume * material.section);
+          }
+        else
+          densities[id] = material.density;
+        if (volume > 0)
+          pcout << "Material " << id << " (" << material.name
+                << "): mu = " << material.shear_modulus
+                << " kPa, density = " << densities[id]
+                << " kg/mm^3, mass in the model = "
+                << densities[id] * volume * material.section << " kg" << std::endl;
+      }
+
+    // The rigid-body modes (translations and rotations) at the support
+    // points of the degrees of freedom: ML builds its coarse spaces from
+    // them, which keeps the number of CG iterations of elasticity low.
+    {
+      std::map<types::global_dof_index, Point<dim>> support_points;
+      DoFTools::map_dofs_to_support_points(*mapping, dof_handler, support_points);
+      const unsigned int n_rotations = dim * (dim - 1) / 2;
+      rigid_body_modes.assign(dim + n_rotations,
+                              std::vector<double>(locally_owned_dofs.n_elements(), 0.));
+      std::vector<types::global_dof_index> dof_indices(fe->n_dofs_per_cell());
+      for (const auto &cell : dof_handler.active_cell_iterators())
+        if (cell->is_locally_owned())
+          {
+            cell->get_dof_indices(dof_indices);
+            for (unsigned int i = 0; i < dof_indices.size(); ++i)
+              if (locally_owned_dofs.is_element(dof_indices[i]))
+                {
+                  const unsigned int local =
+                    locally_owned_dofs.index_within_set(dof_indices[i]);
+                  const unsigned int c = fe->system_to_component_index(i).first;
+                  const Point<dim> &  x = support_points[dof_indices[i]];
+                  rigid_body_modes[c][local] = 1.;
+                  if constexpr (dim == 2)
+                    rigid_body_modes[2][local] = (c == 0) ? -x[1] : x[0];
+                  if constexpr (dim == 3)
+                    {
+                      // Rotations about x, y and z: (0,-z,y), (z,0,-x), (-y,x,0).
+                      const double rx[3] = {0., -x[2], x[1]};
+                      const double ry[3] = {x[2], 0., -x[0]};
+                      const double rz[3] = {-x[1], x[0], 0.};
+                      rigid_body_modes[3][local] = rx[c];
+                      rigid_body_modes[4][local] = ry[c];
+                      rigid_body_modes[5][local] = rz[c];
+                    }
+                }
+          }
+    }
+
+    assemble_mass_matrix();
+
+    pcout << "Degrees of freedom: " << dof_handler.n_dofs() << " ("
+          << fe->get_name() << ", "
+          << Utilities::MPI::n_mpi_processes(mpi_communicator)
+          << " MPI process(es))" << std::endl;
+  }
+
+
+
+  // @sect4{SoftRobotDynamics::assemble_mass_matrix}
+  //
+  // The consistent mass matrix $M_{ij} = \int\rho_0\,\mathbf N_i\cdot\mathbf
+  // N_j\,dV$ (times the section factor) does not change during the run; it
+  // is assembled once. The gravity load is assembled alongside, since it
+  // is the mass matrix applied to the constant field $\mathbf g$.
+  template <int dim>
+  void
+  SoftRobotDynamics<dim>::assemble_mass_matrix()
+  {
+    FEValues<dim> fe_values(*mapping,
+                            *fe,
+                            *cell_quadrature,
+                            update_values | update_JxW_values);
+    const unsigned int dofs_per_cell = fe->n_dofs_per_cell();
+    FullMatrix<double> cell_matrix(dofs_per_cell, dofs_per_cell);
+    Vector<double>     cell_gravity(dofs_per_cell);
+    std::vector<types::global_dof_index> dof_indices(dofs_per_cell);
+    const FEValuesExtractors::Vector     displacements(0);
+
+    gravity_force.reinit(locally_owned_dofs, mpi_communicator);
+    mass = 0.;
+    for (const auto &cell : dof_handler.active_cell_iterators())
+      if (cell->is_locally_owned())
+        {
+          fe_values.reinit(cell);
+          cell_matrix  = 0.;
+          cell_gravity = 0.;
+          const double rho_A =
+            densities.at(cell->material_id()) * material_of(cell).section;
+          for (const unsigned int q : fe_values.quadrature_point_indices())
+            for (const unsigned int i : fe_values.dof_indices())
+              {
+                const Tensor<1, dim> N_i = fe_values[displacements].value(i, q);
+                cell_gravity(i) += rho_A * N_i * gravity * fe_values.JxW(q);
+                for (const unsigned int j : fe_values.dof_indices())
+                  cell_matrix(i, j) += rho_A * N_i *
+                                       fe_values[displacements].value(j, q) *
+                                       fe_values.JxW(q);
+              }
+          cell->get_dof_indices(dof_indices);
+          constraints.distribute_local_to_global(
+            cell_matrix, cell_gravity, dof_indices, mass, gravity_force);
+        }
+    mass.compress(VectorOperation::add);
+    gravity_force.compress(VectorOperation::add);
+  }
+
+
+
+  template <int dim>
+  const Parameters::Material &
+  SoftRobotDynamics<dim>::material_of(
+    const typename DoFHandler<dim>::active_cell_iterator &cell) const
+  {
+    return parameters.by_id.at(cell->material_id());
+  }
+
+
+
+  // @sect4{SoftRobotDynamics::run}
+  //
+  // The whole simulation. The output directory is created only after the
+  // mesh has been read and checked, so a bad input leaves nothing behind.
+  template <int dim>
+  void
+  SoftRobotDynamics<dim>::run()
+  {
+    Timer wall_clock;
+    pcout << "SoftRobotDynamics<" << dim << ">: " << parameters.source_name
+          << "\n" << stepper.description() << std::endl;
+    if (!stepper.is_unconditionally_stable())
+      pcout << "Warning: these HHT parameters are not unconditionally "
+               "stable; the spectral radius exceeds one for some omega*dt."
+            << std::endl;
+    else if (!stepper.is_standard_family())
+      pcout << "Note: beta and gamma are not the standard functions of "
+               "alpha; the scheme is then only first-order accurate."
+            << std::endl;
+
+    make_grid();
+    setup_system();
+
+    if (Utilities::MPI::this_mpi_process(mpi_communicator) == 0)
+      std::filesystem::create_directories(parameters.output_directory);
+    open_trajectory_file();
+
+    initialize_state();
+    write_trajectory_line();
+    unsigned int output_index = 0;
+    double       next_output  = 0.;
+    if (parameters.write_vtu)
+      {
+        output_results(output_index++);
+        next_output += parameters.output_interval;
+      }
+
+    const double total_time = parameters.end_time;
+    while (true)
+      {
+        bool advanced = false;
+        try
+          {
+            advanced = advance_one_step();
+          }
+        catch (RunAborted &)
+          {
+            if (parameters.write_vtu)
+              output_results(output_index++);
+            throw;
+          }
+        if (!advanced)
+          break;
+        write_trajectory_line();
+        if (parameters.write_vtu &&
+            current.time >= next_output - 1e-9 * parameters.time_step)
+          {
+            output_results(output_index++);
+            next_output += parameters.output_interval;
+          }
+        if (parameters.progress_interval > 0 &&
+            step_number % parameters.progress_interval == 0)
+          {
+            const double elapsed = wall_clock.wall_time();
+            const double left =
+              elapsed / current.time * (total_time - current.time);
+            pcout << "step " << std::setw(5) << step_number << "  t = " << std::fixed
+                  << std::setprecision(4) << current.time
+                  << " s  dt = " << std::scientific << std::setprecision(2)
+                  << time_step << "  Newton " << last_newton_iterations
+                  << " (|r| = " << last_residual << ")  elapsed "
+                  << std::fixed << std::setprecision(1) << elapsed
+                  << " s  left ~" << left << " s" << std::defaultfloat
+                  << std::setprecision(6) << std::endl;
+          }
+      }
+
+    pcout << "Finished " << step_number << " steps in " << wall_clock.wall_time()
+          << " s: " << total_newton_iterations << " Newton iterations, "
+          << total_linear_iterations << " linear iterations, "
+          << total_cutbacks << " time-step cutbacks." << std::endl;
+    computing_timer.print_summary();
+  }
+
+
+
+  // The explicit instantiations of this file's member functions.
+#define SOFT_ROBOT_INSTANTIATE(dim)                                         \
+  template SoftRobotDynamics<dim>::SoftRobotDynamics(                       \
+    const Parameters::AllParameters &, const MPI_Comm);                     \
+  template SoftRobotDynamics<dim>::~SoftRobotDynamics();                    \
+  template void SoftRobotDynamics<dim>::make_grid();                        \
+  template void SoftRobotDynamics<dim>::setup_system();                     \
+  template void SoftRobotDynamics<dim>::assemble_mass_matrix();             \
+  template const Parameters::Material &SoftRobotDynamics<dim>::material_of( \
+    const typename DoFHandler<dim>::active_cell_iterator &) const;          \
+  template void SoftRobotDynamics<dim>::run();                              \
+  template void initialize_vector_function<dim>(FunctionParser<dim> &,      \
+                                                const std::string &,        \
+                                                const std::string &,        \
+                                                const std::string &);
+
+  SOFT_ROBOT_INSTANTIATE(1)
+  SOFT_ROBOT_INSTANTIATE(2)
+  SOFT_ROBOT_INSTANTIATE(3)
+#undef SOFT_ROBOT_INSTANTIATE
+} // namespace SoftRobot

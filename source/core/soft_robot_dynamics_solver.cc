@@ -1,0 +1,520 @@
+// @sect3{Solving: Newton's method, the linear solver, the time loop}
+//
+// This file holds the nonlinear and linear solvers of SoftRobotDynamics, the
+// initial state (including a static equilibrium) and the time step with
+// its automatic cut back.
+
+#include <deal.II/base/function_parser.h>
+
+#include <deal.II/lac/solver_cg.h>
+#include <deal.II/lac/solver_control.h>
+#include <deal.II/lac/solver_gmres.h>
+#include <deal.II/lac/trilinos_precondition.h>
+#include <deal.II/lac/trilinos_solver.h>
+
+#include <deal.II/numerics/vector_tools.h>
+
+#include <core/soft_robot_dynamics.h>
+
+#include <Epetra_MultiVector.h>
+#include <Teuchos_ParameterList.hpp>
+
+#include <cmath>
+#include <sstream>
+
+namespace SoftRobot
+{
+  // @sect4{SoftRobotDynamics::evaluate_residual}
+  //
+  // The HHT residual for a trial displacement $\mathbf u_{n+1}$:
+  // velocity and acceleration follow from Newmark's relations, and
+  // @f[
+  //   \mathbf r = \mathbf M\mathbf a_{n+1}
+  //   + (1+\alpha)\left[\mathbf f_\text{int}(\mathbf u_{n+1},\mathbf v_{n+1})
+  //     - \mathbf f_\text{ext}(t_{n+1})\right]
+  //   - \alpha\left[\mathbf f_\text{int}(\mathbf u_n,\mathbf v_n)
+  //     - \mathbf f_\text{ext}(t_n)\right].
+  // @f]
+  // Its derivative, the effective tangent, is
+  // $\mathbf M/(\beta\Delta t^2) + (1+\alpha)(\mathbf K + c_v\zeta\mathbf K)$.
+  // The trial's velocity, acceleration and forces are left in `current`.
+  template <int dim>
+  typename SoftRobotDynamics<dim>::AssemblyResult
+  SoftRobotDynamics<dim>::evaluate_residual(
+    const TrilinosWrappers::MPI::Vector &u_trial,
+    const double                         dt,
+    const bool                           with_matrix,
+    TrilinosWrappers::MPI::Vector &      residual)
+  {
+    stepper.update_kinematics(
+      u_trial, previous.u, previous.v, previous.a, dt, current.v, current.a);
+    const AssemblyResult assembly =
+      assemble_internal_force(u_trial,
+                              current.v,
+                              with_matrix,
+                              stepper.velocity_coefficient(dt),
+                              current.internal_force,
+                              &current.damping_force);
+
+    const double w = stepper.new_force_weight();
+    mass.vmult(residual, current.a);
+    residual.add(w, current.internal_force, -w, current.external_force);
+    residual.add(w - 1., previous.internal_force, 1. - w, previous.external_force);
+    constraints.set_zero(residual);
+
+    if (with_matrix)
+      {
+        system_matrix *= w;
+        system_matrix.add(stepper.acceleration_coefficient(dt), mass);
+      }
+    return assembly;
+  }
+
+
+
+  // @sect4{SoftRobotDynamics::newton_solve}
+  //
+  // Newton's method with a backtracking line search, shared by the time
+  // steps and the static equilibrium. `evaluate` computes the residual and
+  // tangent at a trial displacement. The iteration has converged when the
+  // residual is below the absolute tolerance, or below the relative
+  // tolerance times a force scale (the larger of the external forces and
+  // the first residual). Every failure -- too many iterations, a linear
+  // solver that does not converge, a non-finite residual, an inverted
+  // element that the line search cannot avoid -- throws StepFailure, and the
+  // caller decides what to do.
+  template <int dim>
+  typename SoftRobotDynamics<dim>::AssemblyResult
+  SoftRobotDynamics<dim>::newton_solve(TrilinosWrappers::MPI::Vector &u,
+                                       const ResidualEvaluator &      evaluate,
+                                       const double                   force_scale,
+                                       unsigned int &                 iterations)
+  {
+    TrilinosWrappers::MPI::Vector residual(locally_owned_dofs, mpi_communicator);
+    TrilinosWrappers::MPI::Vector trial_residual(residual), update(residual),
+      trial(residual);
+
+    AssemblyResult assembly = evaluate(u, residual);
+    if (assembly.inverted_point_found)
+      throw StepFailure("the predicted state has an inverted element (det F = " +
+                        std::to_string(assembly.min_jacobian) + ")");
+    double norm = residual.l2_norm();
+    const double reference = std::max(force_scale, norm);
+
+    for (iterations = 0;; ++iterations)
+      {
+        if (!std::isfinite(norm))
+          throw StepFailure("the residual is not finite");
+        if (norm <= parameters.absolute_tolerance ||
+            norm <= parameters.NonlinearSolver::relative_tolerance * reference)
+          break;
+        if (iterations == parameters.NonlinearSolver::max_iterations)
+          {
+            std::ostringstream message;
+            message << "Newton's method did not converge in " << iterations
+                    << " iterations (residual " << norm << ")";
+            throw StepFailure(message.str());
+          }
+
+        residual *= -1.;
+        total_linear_iterations += solve_linear_system(system_matrix, residual, update);
+
+        // Backtracking: the full step is taken if it lowers the residual;
+        // otherwise it is halved. Without line search only a state that
+        // is physically valid and finite is required.
+        double step_length = 1.;
+        bool   accepted    = false;
+        const unsigned int max_halvings =
+          parameters.line_search ? parameters.max_line_search_steps : 0;
+        for (unsigned int halving = 0; halving <= max_halvings; ++halving)
+          {
+            trial = u;
+            trial.add(step_length, update);
+            assembly                = evaluate(trial, trial_residual);
+            const double trial_norm = trial_residual.l2_norm();
+            if (!assembly.inverted_point_found && std::isfinite(trial_norm) &&
+                (!parameters.line_search || trial_norm < norm))
+              {
+                accepted = true;
+                u        = trial;
+                residual = trial_residual;
+                norm     = trial_norm;
+                break;
+              }
+            step_length *= 0.5;
+          }
+        if (!accepted)
+          throw StepFailure("the line search found no admissible step (min det F = " +
+                            std::to_string(assembly.min_jacobian) + ")");
+      }
+    last_residual = norm;
+    return assembly;
+  }
+
+
+
+  // @sect4{SoftRobotDynamics::solve_linear_system}
+  //
+  // CG (or GMRES) with Trilinos ML algebraic multigrid. ML is told that
+  // the problem is elliptic and, for quadratic elements, that the matrix
+  // comes from higher-order elements; its coarse spaces are built from the
+  // rigid-body modes computed in setup_system(), passed through ML's own
+  // parameter list because deal.II's interface takes only constant modes.
+  // The sparse direct solver (Amesos KLU) is there for small problems and
+  // as a check.
+  template <int dim>
+  unsigned int
+  SoftRobotDynamics<dim>::solve_linear_system(TrilinosWrappers::SparseMatrix &     matrix,
+                                              const TrilinosWrappers::MPI::Vector &rhs,
+                                              TrilinosWrappers::MPI::Vector &solution)
+  {
+    solution = 0.;
+    unsigned int iterations = 1;
+    try
+      {
+        if (parameters.LinearSolver::type == "Direct")
+          {
+            TimerOutput::Scope timer_section(computing_timer, "Linear solve");
+            SolverControl                            control(1, 0);
+            TrilinosWrappers::SolverDirect::AdditionalData data(false, "Amesos_Klu");
+            TrilinosWrappers::SolverDirect solver(control, data);
+            solver.solve(matrix, solution, rhs);
+          }
+        else
+          {
+            TrilinosWrappers::PreconditionAMG preconditioner;
+            {
+              TimerOutput::Scope timer_section(computing_timer,
+                                               "Preconditioner setup");
+              TrilinosWrappers::PreconditionAMG::AdditionalData data;
+              data.elliptic              = true;
+              data.higher_order_elements = (parameters.degree > 1);
+              data.smoother_sweeps       = parameters.smoother_sweeps;
+              data.aggregation_threshold = parameters.aggregation_threshold;
+
+              Teuchos::ParameterList              ml_parameters;
+              std::unique_ptr<Epetra_MultiVector> constant_modes;
+              data.set_parameters(ml_parameters, constant_modes, matrix.trilinos_matrix());
+              const Epetra_Map &map = matrix.trilinos_matrix().DomainMap();
+              Epetra_MultiVector modes(map, rigid_body_modes.size());
+              for (unsigned int k = 0; k < rigid_body_modes.size(); ++k)
+                for (unsigned int i = 0; i < rigid_body_modes[k].size(); ++i)
+                  modes[k][i] = rigid_body_modes[k][i];
+              ml_parameters.set("null space: type", "pre-computed");
+              ml_parameters.set("null space: dimension", modes.NumVectors());
+              ml_parameters.set("null space: vectors", modes.Values());
+              preconditioner.initialize(matrix, ml_parameters);
+            }
+            TimerOutput::Scope timer_section(computing_timer, "Linear solve");
+            SolverControl control(parameters.LinearSolver::max_iterations,
+                                  parameters.LinearSolver::relative_tolerance *
+                                    rhs.l2_norm());
+            if (parameters.LinearSolver::type == "CG")
+              {
+                SolverCG<TrilinosWrappers::MPI::Vector> solver(control);
+                solver.solve(matrix, solution, rhs, preconditioner);
+              }
+            else
+              {
+                SolverGMRES<TrilinosWrappers::MPI::Vector> solver(control);
+                solver.solve(matrix, solution, rhs, preconditioner);
+              }
+            iterations = control.last_step();
+          }
+      }
+    catch (SolverControl::NoConvergence &failure)
+      {
+        std::ostringstream message;
+        message << "the linear solver did not converge in " << failure.last_step
+                << " iterations (residual " << failure.last_residual << ")";
+        throw StepFailure(message.str());
+      }
+    constraints.set_zero(solution);
+    return iterations;
+  }
+
+
+
+  // @sect4{SoftRobotDynamics::solve_static_equilibrium}
+  //
+  // The equilibrium $\mathbf f_\text{int}(\mathbf u, \mathbf 0) = \lambda
+  // \mathbf f_\text{ext}(t)$ for a load factor $\lambda$ that rises in equal
+  // steps to one; a load step whose Newton iteration fails is halved.
+  template <int dim>
+  void
+  SoftRobotDynamics<dim>::solve_static_equilibrium(const double time)
+  {
+    TrilinosWrappers::MPI::Vector zero_velocity(locally_owned_dofs, mpi_communicator);
+    TrilinosWrappers::MPI::Vector external(zero_velocity), internal(zero_velocity);
+
+    double       load_factor = 0.;
+    double       increment   = 1. / parameters.load_steps;
+    unsigned int iterations  = 0;
+    while (load_factor < 1. - 1e-12)
+      {
+        const double target = std::min(1., load_factor + increment);
+        assemble_external_force(time, target, external);
+        const ResidualEvaluator static_residual =
+          [&](const TrilinosWrappers::MPI::Vector &u, TrilinosWrappers::MPI::Vector &r) {
+            const AssemblyResult assembly =
+              assemble_internal_force(u, zero_velocity, true, 0., internal, nullptr);
+            r = internal;
+            r -= external;
+            constraints.set_zero(r);
+            return assembly;
+          };
+        const TrilinosWrappers::MPI::Vector saved = current.u;
+        try
+          {
+            newton_solve(current.u, static_residual, external.l2_norm(), iterations);
+            total_newton_iterations += iterations;
+            load_factor = target;
+          }
+        catch (StepFailure &failure)
+          {
+            current.u = saved;
+            increment *= 0.5;
+            if (increment < 1e-4)
+              throw RunAborted("The static equilibrium at t = " + std::to_string(time) +
+                               " could not be found: " + failure.what());
+          }
+      }
+    pcout << "Static equilibrium found (load factor 1, last residual "
+          << last_residual << ")" << std::endl;
+  }
+
+
+
+  // @sect4{SoftRobotDynamics::compute_initial_acceleration}
+  //
+  // The HHT method needs $\mathbf a_0$, which the equation of motion at
+  // $t=0$ determines: $\mathbf M\mathbf a_0 = \mathbf f_\text{ext}(0) -
+  // \mathbf f_\text{int}(\mathbf u_0, \mathbf v_0)$.
+  template <int dim>
+  void
+  SoftRobotDynamics<dim>::compute_initial_acceleration()
+  {
+    const AssemblyResult assembly = assemble_internal_force(
+      current.u, current.v, false, 0., current.internal_force, &current.damping_force);
+    if (assembly.inverted_point_found)
+      throw RunAborted("The initial displacement inverts elements (det F = " +
+                       std::to_string(assembly.min_jacobian) + ").");
+    energy.strain = assembly.strain_energy;
+
+    TrilinosWrappers::MPI::Vector rhs(current.external_force);
+    rhs -= current.internal_force;
+    constraints.set_zero(rhs);
+    SolverControl control(1000, 1e-12 * std::max(rhs.l2_norm(), 1e-300));
+    SolverCG<TrilinosWrappers::MPI::Vector> solver(control);
+    TrilinosWrappers::PreconditionJacobi    jacobi;
+    jacobi.initialize(mass);
+    current.a = 0.;
+    if (rhs.l2_norm() > 0)
+      solver.solve(mass, current.a, rhs, jacobi);
+    constraints.set_zero(current.a);
+  }
+
+
+
+  // @sect4{SoftRobotDynamics::initialize_state}
+  //
+  // Displacement and velocity from the parameter file's expressions (or
+  // the static equilibrium), the forces at $t=0$, the initial acceleration
+  // and the energies the balance is measured against.
+  template <int dim>
+  void
+  SoftRobotDynamics<dim>::initialize_state()
+  {
+    TimerOutput::Scope timer_section(computing_timer, "Initial state");
+    FunctionParser<dim> displacement(dim), velocity(dim);
+    initialize_vector_function(displacement,
+                               parameters.displacement_expression,
+                               parameters.constants,
+                               "Initial conditions/Displacement");
+    initialize_vector_function(velocity,
+                               parameters.velocity_expression,
+                               parameters.constants,
+                               "Initial conditions/Velocity");
+    current.time = 0.;
+    VectorTools::interpolate(*mapping, dof_handler, displacement, current.u);
+    VectorTools::interpolate(*mapping, dof_handler, velocity, current.v);
+    constraints.set_zero(current.u);
+    constraints.set_zero(current.v);
+
+    if (parameters.InitialConditions::type == "static equilibrium")
+      solve_static_equilibrium(0.);
+
+    assemble_external_force(0., 1., current.external_force);
+    compute_initial_acceleration();
+
+    energy.kinetic           = 0.5 * mass.matrix_norm_square(current.v);
+    energy.gravity_potential = -(gravity_force * current.u);
+    energy.traction_work       = 0.;
+    energy.damping_dissipation = 0.;
+    initial_total_energy = energy.kinetic + energy.strain + energy.gravity_potential;
+    step_number          = 0;
+  }
+
+
+
+  // @sect4{SoftRobotDynamics::solve_nonlinear_timestep}
+  //
+  // One HHT step of size dt from `previous` to `current`, starting Newton's
+  // method from the constant-acceleration predictor.
+  template <int dim>
+  void
+  SoftRobotDynamics<dim>::solve_nonlinear_timestep(const double dt)
+  {
+    current.time = previous.time + dt;
+    assemble_external_force(current.time, 1., current.external_force);
+    stepper.predict_displacement(previous.u, previous.v, previous.a, dt, current.u);
+
+    const ResidualEvaluator hht_residual =
+      [&](const TrilinosWrappers::MPI::Vector &u, TrilinosWrappers::MPI::Vector &r) {
+        return evaluate_residual(u, dt, true, r);
+      };
+    unsigned int iterations = 0;
+    const AssemblyResult assembly =
+      newton_solve(current.u, hht_residual, current.external_force.l2_norm(), iterations);
+    last_newton_iterations = iterations;
+    total_newton_iterations += iterations;
+    update_energies(assembly);
+  }
+
+
+
+  // @sect4{SoftRobotDynamics::update_energies}
+  //
+  // The energy balance of the step. Kinetic, strain and gravitational
+  // energy are state functions; the work of the tractions and the energy
+  // dissipated by the viscous stresses are accumulated with the
+  // trapezoidal rule over the displacement increment. Whatever is left in
+  // the balance is the algorithmic dissipation of the HHT scheme (and the
+  // error of the trapezoidal accumulation).
+  template <int dim>
+  void
+  SoftRobotDynamics<dim>::update_energies(const AssemblyResult &assembly)
+  {
+    TrilinosWrappers::MPI::Vector increment(current.u);
+    increment -= previous.u;
+    TrilinosWrappers::MPI::Vector traction_sum(current.external_force);
+    traction_sum += previous.external_force;
+    traction_sum.add(-2., gravity_force);
+    TrilinosWrappers::MPI::Vector damping_sum(current.damping_force);
+    damping_sum += previous.damping_force;
+
+    energy.kinetic           = 0.5 * mass.matrix_norm_square(current.v);
+    energy.strain            = assembly.strain_energy;
+    energy.gravity_potential = -(gravity_force * current.u);
+    energy.traction_work += 0.5 * (traction_sum * increment);
+    energy.damping_dissipation += 0.5 * (damping_sum * increment);
+  }
+
+
+
+  // @sect4{SoftRobotDynamics::advance_one_step}
+  //
+  // One step of the time loop with automatic step-size control: a failed
+  // step is repeated with half the time step, down to the minimum; after
+  // `Regrowth steps` successful steps the step is doubled again, but only
+  // at times that are multiples of the doubled step, so that the steps
+  // return to the nominal grid $t_n = n\,\Delta t$ (which the spectral
+  // analysis of the tip motion prefers). Returns false at the end time.
+  template <int dim>
+  bool
+  SoftRobotDynamics<dim>::advance_one_step()
+  {
+    const double end_time  = parameters.end_time;
+    const double tolerance = 1e-9 * parameters.time_step;
+    if (current.time >= end_time - tolerance)
+      return false;
+
+    previous = current;
+    while (true)
+      {
+        const double dt = std::min(time_step, end_time - previous.time);
+        try
+          {
+            solve_nonlinear_timestep(dt);
+            break;
+          }
+        catch (StepFailure &failure)
+          {
+            current = previous;
+            time_step *= 0.5;
+            ++total_cutbacks;
+            steps_since_cutback = 0;
+            pcout << "  step at t = " << previous.time + dt << " failed (" << failure.what()
+                  << "); time step cut back to " << time_step << " s" << std::endl;
+            if (time_step < parameters.minimum_time_step)
+              {
+                std::ostringstream message;
+                message << "The time step fell below the minimum of "
+                        << parameters.minimum_time_step << " s at t = " << previous.time
+                        << " s: " << failure.what()
+                        << ". The output up to this time has been kept.";
+                throw RunAborted(message.str());
+              }
+          }
+      }
+    ++step_number;
+
+    ++steps_since_cutback;
+    if (time_step < parameters.time_step &&
+        steps_since_cutback >= parameters.regrowth_steps)
+      {
+        const double doubled = 2. * time_step;
+        const double n       = current.time / doubled;
+        if (std::abs(n - std::round(n)) < 1e-6)
+          {
+            time_step           = std::min(doubled, parameters.time_step);
+            steps_since_cutback = 0;
+          }
+      }
+    return true;
+  }
+
+
+
+  // @sect4{SoftRobotDynamics::tangent_stiffness_matrix}
+  template <int dim>
+  const TrilinosWrappers::SparseMatrix &
+  SoftRobotDynamics<dim>::tangent_stiffness_matrix()
+  {
+    TrilinosWrappers::MPI::Vector zero(locally_owned_dofs, mpi_communicator), force(zero);
+    assemble_internal_force(current.u, zero, true, 0., force, nullptr);
+    return system_matrix;
+  }
+
+
+
+#define SOFT_ROBOT_INSTANTIATE(dim)                                           \
+  template typename SoftRobotDynamics<dim>::AssemblyResult                    \
+  SoftRobotDynamics<dim>::evaluate_residual(                                  \
+    const TrilinosWrappers::MPI::Vector &,                                    \
+    const double,                                                             \
+    const bool,                                                               \
+    TrilinosWrappers::MPI::Vector &);                                         \
+  template typename SoftRobotDynamics<dim>::AssemblyResult                    \
+  SoftRobotDynamics<dim>::newton_solve(TrilinosWrappers::MPI::Vector &,       \
+                                       const ResidualEvaluator &,             \
+                                       const double,                          \
+                                       unsigned int &);                       \
+  template unsigned int SoftRobotDynamics<dim>::solve_linear_system(          \
+    TrilinosWrappers::SparseMatrix &,                                         \
+    const TrilinosWrappers::MPI::Vector &,                                    \
+    TrilinosWrappers::MPI::Vector &);                                         \
+  template void SoftRobotDynamics<dim>::solve_static_equilibrium(const double); \
+  template void SoftRobotDynamics<dim>::compute_initial_acceleration();       \
+  template void SoftRobotDynamics<dim>::initialize_state();                   \
+  template void SoftRobotDynamics<dim>::solve_nonlinear_timestep(const double); \
+  template void SoftRobotDynamics<dim>::update_energies(const AssemblyResult &); \
+  template bool SoftRobotDynamics<dim>::advance_one_step();                   \
+  template const TrilinosWrappers::SparseMatrix &                             \
+  SoftRobotDynamics<dim>::tangent_stiffness_matrix();
+
+  SOFT_ROBOT_INSTANTIATE(1)
+  SOFT_ROBOT_INSTANTIATE(2)
+  SOFT_ROBOT_INSTANTIATE(3)
+#undef SOFT_ROBOT_INSTANTIATE
+} // namespace SoftRobot

@@ -1,0 +1,101 @@
+// @sect3{The main program}
+//
+// Reads the parameter file (whose entries do not depend on the dimension),
+// then runs SoftRobotDynamics<dim> for the dimension it names. Errors in the input end the
+// program with a message naming the file and the entry, and exit code 1;
+// a simulation that cannot continue (the time step fell below its
+// minimum) ends with exit code 2 and keeps the output written so far.
+
+#include <deal.II/base/exceptions.h>
+#include <deal.II/base/mpi.h>
+
+#include <core/parameters.h>
+#include <core/soft_robot_dynamics.h>
+
+#include <iostream>
+
+namespace
+{
+  template <int dim>
+  void
+  run(const SoftRobot::Parameters::AllParameters &parameters)
+  {
+    SoftRobot::SoftRobotDynamics<dim> simulation(parameters, MPI_COMM_WORLD);
+    simulation.run();
+  }
+
+  void
+  print_usage()
+  {
+    std::cerr << "Usage: soft-robot <file.prm>\n"
+                 "       soft-robot --print-parameters   (all entries with "
+                 "defaults and documentation)\n";
+  }
+} // namespace
+
+int
+main(int argc, char *argv[])
+{
+  using namespace SoftRobot;
+  dealii::Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
+  const bool root = dealii::Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0;
+
+  if (argc != 2)
+    {
+      if (root)
+        print_usage();
+      return 1;
+    }
+  const std::string argument = argv[1];
+  try
+    {
+      if (argument == "--print-parameters")
+        {
+          dealii::ParameterHandler prm;
+          Parameters::AllParameters::declare_parameters(prm);
+          if (root)
+            prm.print_parameters(std::cout, dealii::ParameterHandler::PRM);
+          return 0;
+        }
+
+      Parameters::AllParameters parameters;
+      parameters.read_file(argument);
+      switch (parameters.dimension)
+        {
+          case 1:
+            run<1>(parameters);
+            break;
+          case 2:
+            run<2>(parameters);
+            break;
+          default:
+            run<3>(parameters);
+        }
+    }
+  catch (RunAborted &aborted)
+    {
+      if (root)
+        std::cerr << "\nThe simulation stopped: " << aborted.what() << std::endl;
+      return 2;
+    }
+  catch (dealii::ExceptionBase &error)
+    {
+      // deal.II's exceptions (among them ParameterHandler's messages about
+      // entries out of range): only their message, without the location in
+      // the source code, which is of no use to a user.
+      if (root)
+        {
+          std::cerr << "\nError in the input:\n";
+          error.print_info(std::cerr);
+          std::cerr << std::endl;
+        }
+      return 1;
+    }
+  catch (std::exception &error)
+    {
+      if (root)
+        std::cerr << "\nError: " << error.what() << std::endl;
+      return 1;
+    }
+  return 0;
+}

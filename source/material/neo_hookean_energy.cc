@@ -1,0 +1,155 @@
+#include <deal.II/differentiation/ad.h>
+
+#include <material/neo_hookean_energy.h>
+
+namespace SoftRobot
+{
+  // @sect3{Implementation of NeoHookeanEnergy}
+
+  template <int dim>
+  NeoHookeanEnergy<dim>::NeoHookeanEnergy(const double shear_modulus,
+                                          const double bulk_modulus)
+    : mu(shear_modulus)
+    , kappa(bulk_modulus)
+  {}
+
+
+
+  // @sect4{NeoHookeanEnergy::evaluate}
+  //
+  // The automatic differentiation happens here, at the level of one
+  // quadrature point. The helper class ScalarFunction registers the
+  // components of $\mathbf C$ as independent variables, we evaluate the
+  // energy once with nested forward-mode numbers (Sacado's DFad<DFad>),
+  // and read off the gradient and the Hessian. deal.II's extractors take
+  // care of the symmetric storage: the gradient with respect to a
+  // SymmetricTensor comes back as the tensor $\partial\Psi/\partial\mathbf
+  // C$ with the off-diagonal factors already accounted for.
+  //
+  // Differentiating at the cell level instead (the energy functional of all
+  // the cell's degrees of freedom) would be simpler to write, but a nested
+  // forward-mode number would then carry 30 to 81 derivative directions
+  // instead of 1 to 6, which makes assembly an order of magnitude slower.
+  template <int dim>
+  void
+  NeoHookeanEnergy<dim>::evaluate(const Tensor<2, dim> & F,
+                                  MaterialResponse<dim> &response) const
+  {
+    constexpr Differentiation::AD::NumberTypes ad_type_code =
+      Differentiation::AD::NumberTypes::sacado_dfad_dfad;
+    using ADHelper = Differentiation::AD::ScalarFunction<dim, ad_type_code, double>;
+    using ADNumber = typename ADHelper::ad_type;
+
+    const FEValuesExtractors::SymmetricTensor<2> C_extractor(0);
+    const SymmetricTensor<2, dim>                C = symmetrize(transpose(F) * F);
+
+    ADHelper ad_helper(SymmetricTensor<2, dim>::n_independent_components);
+    ad_helper.register_independent_variable(C, C_extractor);
+    const SymmetricTensor<2, dim, ADNumber> C_ad =
+      ad_helper.get_sensitive_variables(C_extractor);
+
+    ad_helper.register_dependent_variable(energy(C_ad));
+
+    const unsigned int n = SymmetricTensor<2, dim>::n_independent_components;
+    Vector<double>     dpsi(n);
+    FullMatrix<double> d2psi(n, n);
+    response.energy = ad_helper.compute_value();
+    ad_helper.compute_gradient(dpsi);
+    ad_helper.compute_hessian(d2psi);
+    response.second_piola =
+      2. * ad_helper.extract_gradient_component(dpsi, C_extractor);
+    response.material_tangent =
+      4. * ad_helper.extract_hessian_component(d2psi, C_extractor, C_extractor);
+  }
+
+
+
+  // @sect4{Closed forms for the tests}
+  //
+  // The first Piola-Kirchhoff stress of the three energies, differentiated
+  // by hand:
+  // @f[
+  //   \mathbf P_{3D} = \mu J^{-2/3}\left(\mathbf F
+  //        - \tfrac13\,\mathrm{tr}\,\mathbf C\,\mathbf F^{-T}\right)
+  //        + \tfrac{\kappa}{2}\left(J^2 - 1\right)\mathbf F^{-T},\quad
+  //   \mathbf P_{2D} = \mu\left(\mathbf F - J^{-2}\mathbf F^{-T}\right),\quad
+  //   P_{1D} = \mu\left(\lambda - \lambda^{-2}\right).
+  // @f]
+  template <int dim>
+  Tensor<2, dim>
+  NeoHookeanEnergy<dim>::first_piola_closed_form(const Tensor<2, dim> &F) const
+  {
+    const double         J      = determinant(F);
+    const Tensor<2, dim> F_invT = transpose(invert(F));
+    if constexpr (dim == 3)
+      {
+        const double I1 = scalar_product(F, F);
+        return mu * std::pow(J, -2. / 3.) * (F - I1 / 3. * F_invT) +
+               0.5 * kappa * (J * J - 1.) * F_invT;
+      }
+    else if constexpr (dim == 2)
+      return mu * (F - 1. / (J * J) * F_invT);
+    else
+      {
+        Tensor<2, dim> P;
+        P[0][0] = mu * (F[0][0] - 1. / (F[0][0] * F[0][0]));
+        return P;
+      }
+  }
+
+
+
+  template <int dim>
+  double
+  NeoHookeanEnergy<dim>::volume_ratio(const Tensor<2, dim> &F) const
+  {
+    return (dim == 3) ? determinant(F) : 1.;
+  }
+
+
+
+  template <int dim>
+  SymmetricTensor<2, dim>
+  NeoHookeanEnergy<dim>::cauchy_stress(const Tensor<2, dim> &         F,
+                                       const SymmetricTensor<2, dim> &S) const
+  {
+    return symmetrize(F * Tensor<2, dim>(S) * transpose(F)) / volume_ratio(F);
+  }
+
+
+
+  template <int dim>
+  Tensor<4, dim>
+  first_piola_tangent(const Tensor<2, dim> &         F,
+                      const SymmetricTensor<2, dim> &S,
+                      const SymmetricTensor<4, dim> &CC)
+  {
+    Tensor<4, dim> A;
+    for (unsigned int i = 0; i < dim; ++i)
+      for (unsigned int J = 0; J < dim; ++J)
+        for (unsigned int k = 0; k < dim; ++k)
+          for (unsigned int L = 0; L < dim; ++L)
+            {
+              double value = (i == k) ? S[J][L] : 0.;
+              for (unsigned int I = 0; I < dim; ++I)
+                for (unsigned int K = 0; K < dim; ++K)
+                  value += F[i][I] * CC[I][J][K][L] * F[k][K];
+              A[i][J][k][L] = value;
+            }
+    return A;
+  }
+
+
+
+  // The explicit instantiations for the three dimensions, in one place.
+#define SOFT_ROBOT_INSTANTIATE(dim)                                         \
+  template class NeoHookeanEnergy<dim>;                                     \
+  template Tensor<4, dim> first_piola_tangent<dim>(                        \
+    const Tensor<2, dim> &, const SymmetricTensor<2, dim> &,               \
+    const SymmetricTensor<4, dim> &);
+
+  SOFT_ROBOT_INSTANTIATE(1)
+  SOFT_ROBOT_INSTANTIATE(2)
+  SOFT_ROBOT_INSTANTIATE(3)
+#undef SOFT_ROBOT_INSTANTIATE
+} // namespace SoftRobot
