@@ -1,0 +1,68 @@
+#!/bin/bash
+# Writes the bellows meshes meshes/bellows_<model>_<level>.msh from
+# meshes/bellows.geo with gmsh (Debian: apt-get install gmsh; tested with 4.8.4)
+# and prints their element and node counts.
+#
+#   bash meshes/generate_meshes.sh            all meshes
+#   bash meshes/generate_meshes.sh quarter    the meshes of one model
+#
+# Levels:
+#   coarse  close to the element counts of the reference study's meshes
+#           (quarter 1,743, half 3,670, full 4,178 linear tetrahedra); the
+#           section's own short edges set the mesh there, so the sizes differ
+#           per model and the full model needs fewer nodes on small circles.
+#   medium  element size 5 mm everywhere, a little over the wall thickness.
+#   fine    element size 3 mm, the wall thickness.
+# The surface mesher is fixed per mesh: which of gmsh's three leaves the
+# fewest flat tetrahedra in the thin walls differs from mesh to mesh, and it
+# was chosen once by the smallest quality gamma (see README.md).
+#
+# gmsh runs single-threaded with fixed options, so a run gives the same
+# files byte for byte. All meshes are small enough to be committed.
+set -euo pipefail
+
+here="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
+geo="$here/bellows.geo"
+
+# model   Model  level   ElementSize  CircleNodes  SurfaceAlgorithm
+meshes="
+quarter 1 coarse 10.5 7 6
+half    2 coarse  9.5 7 6
+full    4 coarse 12   5 5
+quarter 1 medium  5   7 5
+half    2 medium  5   7 1
+full    4 medium  5   7 1
+quarter 1 fine    3   7 1
+half    2 fine    3   7 5
+full    4 fine    3   7 5
+"
+
+only="${1:-}"
+printf "%-28s %10s %8s %10s\n" "mesh" "tets" "nodes" "triangles"
+while read -r model quarters level size circle surface; do
+  [ -z "$model" ] && continue
+  [ -n "$only" ] && [ "$only" != "$model" ] && continue
+  out="$here/bellows_${model}_${level}.msh"
+  log="$(mktemp)"
+  gmsh "$geo" -3 -nt 1 -format msh22 \
+    -setnumber Model "$quarters" -setnumber ElementSize "$size" \
+    -setnumber CircleNodes "$circle" -setnumber SurfaceAlgorithm "$surface" \
+    -o "$out" > "$log" 2>&1 || true
+  # gmsh reports errors (including those raised by bellows.geo's own checks)
+  # on its log but still exits with 0.
+  if grep -q '^Error' "$log" || [ ! -s "$out" ]; then
+    grep '^Error' "$log" >&2 || true
+    echo "generate_meshes.sh: gmsh failed for $out" >&2
+    rm -f "$log" "$out"
+    exit 1
+  fi
+  rm -f "$log"
+  # Element type 4 is the linear tetrahedron, 2 the triangle (MSH 2.2).
+  counts=$(awk '/^\$Nodes/ {getline; nodes = $1}
+                /^\$Elements/ {inside = 1; getline; next}
+                /^\$EndElements/ {inside = 0}
+                inside && $2 == 4 {tets++}
+                inside && $2 == 2 {tris++}
+                END {printf "%10d %8d %10d", tets, nodes, tris}' "$out")
+  printf "%-28s %s\n" "$(basename "$out")" "$counts"
+done <<< "$meshes"
