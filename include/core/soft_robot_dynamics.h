@@ -154,6 +154,11 @@ namespace SoftRobot
     {
       return dof_handler;
     }
+    const Mapping<dim> &
+    get_mapping() const
+    {
+      return *mapping;
+    }
     const AffineConstraints<double> &
     get_constraints() const
     {
@@ -214,6 +219,9 @@ namespace SoftRobot
     struct AssemblyResult
     {
       double strain_energy        = 0.;
+      // The size of the forces that balance in the residual (internal
+      // and inertial), against which round-off is judged.
+      double force_scale          = 0.;
       double min_jacobian         = std::numeric_limits<double>::max();
       bool   inverted_point_found = false;
     };

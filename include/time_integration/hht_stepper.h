@@ -28,8 +28,8 @@
 // $\gamma = 1/2-\alpha$ the scheme is second-order accurate,
 // unconditionally stable for linear problems, and damps the highest
 // frequencies with the spectral radius $\rho_\infty = (1+\alpha)/(1-\alpha)$,
-// while the low modes that carry the physics lose only $O(\Omega^3)$ of
-// their amplitude per step. $\alpha = 0$ is the trapezoidal rule, which
+// while the low modes that carry the physics get an algorithmic damping
+// ratio of only $-\alpha(1+\alpha)^2\Omega^3/8$. $\alpha = 0$ is the trapezoidal rule, which
 // conserves the energy of linear systems exactly.
 //
 // Newton's method solves for $\mathbf u_{n+1}$; the two relations above,

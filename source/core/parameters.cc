@@ -93,8 +93,8 @@ namespace SoftRobot
                         "If not empty: an expression in x, y, z whose value "
                         "at a cell's centre, rounded to an integer, becomes "
                         "the cell's material id, e.g. 'x > 89.25 ? 2 : 1'. "
-                        "Empty: keep the ids of the mesh (1 for generated "
-                        "meshes).");
+                        "Empty: keep the ids of a mesh file; a generated "
+                        "mesh is then of material 1.");
       prm.declare_entry("Model fraction",
                         "1",
                         Patterns::Double(0, 1),

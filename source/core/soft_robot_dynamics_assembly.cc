@@ -108,7 +108,7 @@ namespace SoftRobot
                   result.inverted_point_found = true;
                   continue;
                 }
-              material.evaluate(F, response);
+              material.evaluate(grad_u[q], response);
               const double JxW = fe_values.JxW(q) * section;
               result.strain_energy += response.energy * JxW;
 

@@ -186,7 +186,7 @@ namespace SoftRobot
               Tensor<2, dim> F = G;
               for (unsigned int d = 0; d < dim; ++d)
                 F[d][d] += 1.;
-              law.evaluate(F, response);
+              law.evaluate(G, response);
               mean_sigma += law.cauchy_stress(F, response.second_piola);
               mean_J += determinant(F);
             }

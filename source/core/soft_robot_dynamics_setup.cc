@@ -209,6 +209,12 @@ namespace SoftRobot
     if (parameters.distortion > 0)
       GridTools::distort_random(parameters.distortion, serial, true);
 
+    // Generators number materials in their own ways (colorized boxes by
+    // octant); a generated mesh is of material 1 unless the parameter
+    // file's function says otherwise.
+    if (parameters.mesh_source == "generator")
+      for (const auto &cell : serial.active_cell_iterators())
+        cell->set_material_id(1);
     if (!parameters.material_id_function.empty())
       {
         FunctionParser<dim> id_function(1);

@@ -19,20 +19,29 @@ namespace SoftRobot
   //
   // The automatic differentiation happens here, at the level of one
   // quadrature point. The helper class ScalarFunction registers the
-  // components of $\mathbf C$ as independent variables, we evaluate the
+  // components of $\mathbf E$ as independent variables, we evaluate the
   // energy once with nested forward-mode numbers (Sacado's DFad<DFad>),
   // and read off the gradient and the Hessian. deal.II's extractors take
   // care of the symmetric storage: the gradient with respect to a
   // SymmetricTensor comes back as the tensor $\partial\Psi/\partial\mathbf
-  // C$ with the off-diagonal factors already accounted for.
+  // E$ with the off-diagonal factors already accounted for.
   //
   // Differentiating at the cell level instead (the energy functional of all
   // the cell's degrees of freedom) would be simpler to write, but a nested
   // forward-mode number would then carry 30 to 81 derivative directions
   // instead of 1 to 6, which makes assembly an order of magnitude slower.
   template <int dim>
+  SymmetricTensor<2, dim>
+  NeoHookeanEnergy<dim>::green_lagrange_strain(const Tensor<2, dim> &H)
+  {
+    return symmetrize(H) + 0.5 * symmetrize(transpose(H) * H);
+  }
+
+
+
+  template <int dim>
   void
-  NeoHookeanEnergy<dim>::evaluate(const Tensor<2, dim> & F,
+  NeoHookeanEnergy<dim>::evaluate(const Tensor<2, dim> & displacement_gradient,
                                   MaterialResponse<dim> &response) const
   {
     constexpr Differentiation::AD::NumberTypes ad_type_code =
@@ -40,15 +49,15 @@ namespace SoftRobot
     using ADHelper = Differentiation::AD::ScalarFunction<dim, ad_type_code, double>;
     using ADNumber = typename ADHelper::ad_type;
 
-    const FEValuesExtractors::SymmetricTensor<2> C_extractor(0);
-    const SymmetricTensor<2, dim>                C = symmetrize(transpose(F) * F);
+    const FEValuesExtractors::SymmetricTensor<2> E_extractor(0);
+    const SymmetricTensor<2, dim> E = green_lagrange_strain(displacement_gradient);
 
     ADHelper ad_helper(SymmetricTensor<2, dim>::n_independent_components);
-    ad_helper.register_independent_variable(C, C_extractor);
-    const SymmetricTensor<2, dim, ADNumber> C_ad =
-      ad_helper.get_sensitive_variables(C_extractor);
+    ad_helper.register_independent_variable(E, E_extractor);
+    const SymmetricTensor<2, dim, ADNumber> E_ad =
+      ad_helper.get_sensitive_variables(E_extractor);
 
-    ad_helper.register_dependent_variable(energy(C_ad));
+    ad_helper.register_dependent_variable(energy(E_ad));
 
     const unsigned int n = SymmetricTensor<2, dim>::n_independent_components;
     Vector<double>     dpsi(n);
@@ -56,10 +65,9 @@ namespace SoftRobot
     response.energy = ad_helper.compute_value();
     ad_helper.compute_gradient(dpsi);
     ad_helper.compute_hessian(d2psi);
-    response.second_piola =
-      2. * ad_helper.extract_gradient_component(dpsi, C_extractor);
+    response.second_piola = ad_helper.extract_gradient_component(dpsi, E_extractor);
     response.material_tangent =
-      4. * ad_helper.extract_hessian_component(d2psi, C_extractor, C_extractor);
+      ad_helper.extract_hessian_component(d2psi, E_extractor, E_extractor);
   }
 
 

@@ -1,0 +1,100 @@
+// Tools shared by the solver tests: parameter texts for small bodies, and
+// the dense linearised eigenproblem of a model.
+
+#ifndef soft_robot_tests_solver_test_tools_h
+#define soft_robot_tests_solver_test_tools_h
+
+#include <deal.II/lac/lapack_full_matrix.h>
+
+#include <core/soft_robot_dynamics.h>
+
+#include <sstream>
+#include <string>
+
+namespace SoftRobot::Testing
+{
+  // The parameter text of a small body: everything the tests do not set
+  // explicitly has the program's default. `sections` is appended verbatim.
+  inline std::string
+  parameter_text(const unsigned int dim, const std::string &sections)
+  {
+    std::ostringstream text;
+    text << "subsection Problem\n  set Dimension = " << dim
+         << "\n  set Output directory = test_output\nend\n"
+         << "subsection Output\n  set Write VTU = false\n  set Tip region = boundary 1\n"
+         << "  set Progress interval = 0\nend\n"
+         << sections;
+    return text.str();
+  }
+
+  // "n, 1, 1: 0, 0, 0: L, a, a: true" for dim = 3 and its lower-dimensional
+  // counterparts: a box of n x m x m cells, colourised so that the faces
+  // x = 0, x = L, y = 0, y = a, z = 0, z = a get the ids 0 to 5.
+  inline std::string
+  box_arguments(const unsigned int dim,
+                const unsigned int n_length,
+                const unsigned int n_width,
+                const double       length,
+                const double       width)
+  {
+    std::ostringstream text;
+    const auto list = [&](const auto first, const auto rest) {
+      std::ostringstream out;
+      out << first;
+      for (unsigned int d = 1; d < dim; ++d)
+        out << ", " << rest;
+      return out.str();
+    };
+    text << list(n_length, n_width) << ": " << list(0., 0.) << ": "
+         << list(length, width) << ": true";
+    return text.str();
+  }
+
+  // The eigenfrequencies (rad/s) of the model linearised at its current
+  // state, $\mathbf K\boldsymbol\phi = \omega^2\mathbf M\boldsymbol\phi$,
+  // with the constrained degrees of freedom removed; ascending.
+  template <int dim>
+  std::vector<double>
+  linearised_frequencies(SoftRobotDynamics<dim> &model)
+  {
+    const auto &stiffness   = model.tangent_stiffness_matrix();
+    const auto &mass        = model.mass_matrix();
+    const auto &constraints = model.get_constraints();
+    std::vector<types::global_dof_index> free_dofs;
+    for (types::global_dof_index i = 0; i < model.get_dof_handler().n_dofs(); ++i)
+      if (!constraints.is_constrained(i))
+        free_dofs.push_back(i);
+    const unsigned int       n = free_dofs.size();
+    LAPACKFullMatrix<double> K(n, n), M(n, n);
+    for (unsigned int i = 0; i < n; ++i)
+      for (unsigned int j = 0; j < n; ++j)
+        {
+          K(i, j) = stiffness.el(free_dofs[i], free_dofs[j]);
+          M(i, j) = mass.el(free_dofs[i], free_dofs[j]);
+        }
+    std::vector<Vector<double>> eigenvectors(n, Vector<double>(n));
+    K.compute_generalized_eigenvalues_symmetric(M, eigenvectors);
+    std::vector<double> omega(n);
+    for (unsigned int i = 0; i < n; ++i)
+      omega[i] = std::sqrt(std::real(K.eigenvalue(i)));
+    std::sort(omega.begin(), omega.end());
+    return omega;
+  }
+
+  // The smallest root beta of beta tan(beta) = ratio in (0, pi/2), by
+  // bisection: the first axial mode of a rod with a tip mass, where ratio
+  // is the rod's mass over the tip mass and beta = omega L / c.
+  inline double
+  rod_tip_mass_root(const double ratio)
+  {
+    double low = 0., high = 0.5 * M_PI - 1e-15;
+    for (unsigned int i = 0; i < 200; ++i)
+      {
+        const double mid = 0.5 * (low + high);
+        (mid * std::tan(mid) < ratio ? low : high) = mid;
+      }
+    return 0.5 * (low + high);
+  }
+} // namespace SoftRobot::Testing
+
+#endif
