@@ -195,19 +195,22 @@ namespace SoftRobot
     }
 
     // $k(d) = d - \ln(1+d)$, $g(d) = (1+d)^{-1/3} - 1$ and $h(d) = 3g(d) +
-    // d$, of the orders $d^2$, $d$ and $d^2$: by their Taylor series for
-    // $|d| < 10^{-2}$, where twelve terms reach round-off, and directly
-    // elsewhere, where the cancellation costs less than two digits. (Sacado
-    // has no log1p or expm1.)
+    // d$, of the orders $d^2$, $d$ and $d^2$: by their Taylor series up to
+    // $d^7$ for $|d| < 10^{-3}$, where the remainder is below round-off,
+    // and directly elsewhere, where the cancellation costs at most three
+    // digits. (Sacado has no log1p or expm1.) The series are the most
+    // expensive part of the 3D energy, so they are kept short.
+    constexpr double series_limit = 1e-3;
+
     template <typename Number>
     Number
     d_minus_log1p(const Number &d)
     {
       using std::log;
-      if (std::abs(scalar_value(d)) >= 1e-2)
+      if (std::abs(scalar_value(d)) >= series_limit)
         return d - log(1. + d);
       Number sum = 0., power = d * d;
-      for (unsigned int k = 2; k <= 12; ++k, power *= -d)
+      for (unsigned int k = 2; k <= 7; ++k, power *= -d)
         sum += power / double(k);
       return sum;
     }
@@ -220,7 +223,7 @@ namespace SoftRobot
     {
       Number result = 0., power = 1.;
       double coefficient = 1.;
-      for (unsigned int k = 0; k <= 12; ++k)
+      for (unsigned int k = 0; k <= 7; ++k)
         {
           if (k >= first_order)
             result += coefficient * power;
@@ -235,7 +238,7 @@ namespace SoftRobot
     inverse_cube_root_minus_one(const Number &d)
     {
       using std::pow;
-      if (std::abs(scalar_value(d)) >= 1e-2)
+      if (std::abs(scalar_value(d)) >= series_limit)
         return pow(1. + d, -1. / 3.) - 1.;
       return cube_root_series(d, 1);
     }
@@ -245,7 +248,7 @@ namespace SoftRobot
     cube_root_remainder(const Number &d)
     {
       using std::pow;
-      if (std::abs(scalar_value(d)) >= 1e-2)
+      if (std::abs(scalar_value(d)) >= series_limit)
         return 3. * (pow(1. + d, -1. / 3.) - 1.) + d;
       return 3. * cube_root_series(d, 2);
     }
