@@ -3,6 +3,7 @@
 #
 #   ./soft-robot.sh demo   install what is missing, build in Release, run the
 #                          default scene (parameters/bellows_release_quarter_3d.prm)
+#                          and the 1D and 2D scenes
 #   ./soft-robot.sh test   install what is missing, build in Debug (deal.II's
 #                          internal checks on), run the whole test suite
 #
@@ -37,8 +38,11 @@ case "${1:-}" in
   demo)
     install_missing_packages
     build Release build-release -DSOFT_ROBOT_BUILD_TESTS=OFF
-    build-release/soft-robot parameters/bellows_release_quarter_3d.prm
-    echo "Open output/bellows_release_quarter_3d/solution.pvd in ParaView."
+    # The default scene is the 3D actuator; the 1D and 2D models follow.
+    for scene in bellows_release_quarter_3d column_1d plate_2d; do
+      build-release/soft-robot parameters/$scene.prm
+      echo "Open output/$scene/solution.pvd in ParaView."
+    done
     ;;
   test)
     install_missing_packages

@@ -6,12 +6,10 @@
 // a simulation that cannot continue (the time step fell below its
 // minimum) ends with exit code 2 and keeps the output written so far.
 
-#include <deal.II/base/exceptions.h>
-#include <deal.II/base/mpi.h>
-
 #include <core/parameters.h>
 #include <core/soft_robot_dynamics.h>
-
+#include <deal.II/base/exceptions.h>
+#include <deal.II/base/mpi.h>
 #include <iostream>
 
 namespace
@@ -38,7 +36,8 @@ main(int argc, char *argv[])
 {
   using namespace SoftRobot;
   dealii::Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
-  const bool root = dealii::Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0;
+  const bool                               root =
+    dealii::Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0;
 
   if (argc != 2)
     {
@@ -75,7 +74,8 @@ main(int argc, char *argv[])
   catch (RunAborted &aborted)
     {
       if (root)
-        std::cerr << "\nThe simulation stopped: " << aborted.what() << std::endl;
+        std::cerr << "\nThe simulation stopped: " << aborted.what()
+                  << std::endl;
       return 2;
     }
   catch (dealii::ExceptionBase &error)

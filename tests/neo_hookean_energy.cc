@@ -381,7 +381,8 @@ TYPED_TEST(NeoHookeanEnergyTest, Objectivity)
 
           MaterialResponse<dim> response, rotated_response;
           material.evaluate(displacement_gradient<dim>(F), response);
-          material.evaluate(displacement_gradient<dim>(Q * F), rotated_response);
+          material.evaluate(displacement_gradient<dim>(Q * F),
+                            rotated_response);
 
           const double energy_error =
             std::abs(rotated_response.energy - response.energy) /

@@ -5,16 +5,13 @@
 // solution known in closed form. The tolerances follow from the theory
 // that is quoted beside each test.
 
-#include <deal.II/base/utilities.h>
-
-#include <deal.II/dofs/dof_tools.h>
-
-#include <core/soft_robot_dynamics.h>
-#include <gtest/gtest.h>
-
 #include "solver_test_tools.h"
 
 #include <cmath>
+#include <core/soft_robot_dynamics.h>
+#include <deal.II/base/utilities.h>
+#include <deal.II/dofs/dof_tools.h>
+#include <gtest/gtest.h>
 #include <iomanip>
 
 using namespace dealii;
@@ -23,7 +20,8 @@ using namespace SoftRobot::Testing;
 
 template <typename T>
 class SolverTest : public ::testing::Test
-{};
+{
+};
 using Dimensions = ::testing::Types<std::integral_constant<int, 1>,
                                     std::integral_constant<int, 2>,
                                     std::integral_constant<int, 3>>;
@@ -50,7 +48,8 @@ namespace
   {
     std::ostringstream text;
     text << "subsection Material " << id << "\n  set Name = m" << id
-         << "\n  set Shear modulus = " << mu << "\n  set Bulk modulus = " << kappa
+         << "\n  set Shear modulus = " << mu
+         << "\n  set Bulk modulus = " << kappa
          << "\n  set Density = " << density << "\n  set Section = " << section
          << "\n  set Damping coefficient = " << zeta << "\nend\n";
     return text.str();
@@ -59,7 +58,9 @@ namespace
   // The x-components of the axis letters for 'Fixed components' and
   // 'Traction' in dim dimensions.
   std::string
-  dim_list(const unsigned int dim, const std::vector<std::string> &items, const char *sep)
+  dim_list(const unsigned int              dim,
+           const std::vector<std::string> &items,
+           const char                     *sep)
   {
     std::string out;
     for (unsigned int d = 0; d < dim; ++d)
@@ -86,19 +87,20 @@ TEST(StaticSag, HangingColumnMatchesClosedForm)
 {
   const double L = 100., ell = 2., A = 100., mu = 10., rho = 1e-6, g = 9810.;
   const double M = 0.1, mu_block = 1e4 * mu, rho_block = M / (A * ell);
-  const std::string text =
-    parameter_text(1,
-                   "subsection Geometry\n  set Generator arguments = 102: 0: 102: true\n"
-                   "  set Material id function = x > 100 ? 2 : 1\nend\n"
-                   "subsection Finite element\n  set Polynomial degree = 2\nend\n" +
-                     material(1, mu, 100., rho, A) + material(2, mu_block, 100., rho_block, A) +
-                     "subsection Loads and constraints\n  set Gravity = 9810, 0, 0\n"
-                     "  set Fixed components = 0: x\nend\n"
-                     "subsection Initial conditions\n  set Type = static equilibrium\n"
-                     "  set Load steps = 8\nend\n"
-                     "subsection Nonlinear solver\n  set Absolute tolerance = 1e-10\n"
-                     "  set Relative tolerance = 1e-13\nend\n"
-                     "subsection Linear solver\n  set Solver = Direct\nend\n");
+  const std::string text = parameter_text(
+    1,
+    "subsection Geometry\n  set Generator = subdivided_hyper_rectangle\n  set Generator arguments = 102: 0: 102: true\n"
+    "  set Material id function = x > 100 ? 2 : 1\nend\n"
+    "subsection Finite element\n  set Polynomial degree = 2\nend\n" +
+      material(1, mu, 100., rho, A) +
+      material(2, mu_block, 100., rho_block, A) +
+      "subsection Loads and constraints\n  set Gravity = 9810, 0, 0\n"
+      "  set Fixed components = 0: x\nend\n"
+      "subsection Initial conditions\n  set Type = static equilibrium\n"
+      "  set Load steps = 8\nend\n"
+      "subsection Nonlinear solver\n  set Absolute tolerance = 1e-10\n"
+      "  set Relative tolerance = 1e-13\nend\n"
+      "subsection Linear solver\n  set Solver = Direct\nend\n");
   SoftRobotDynamics<1> column(read(text), MPI_COMM_WORLD);
   column.make_grid();
   column.setup_system();
@@ -115,31 +117,40 @@ TEST(StaticSag, HangingColumnMatchesClosedForm)
     return lambda;
   };
   // Composite 5-point Gauss-Legendre quadrature of lambda - 1.
-  const double gauss_x[5] = {-0.9061798459386640, -0.5384693101056831, 0.,
-                             0.5384693101056831, 0.9061798459386640};
-  const double gauss_w[5] = {0.2369268850561891, 0.4786286704993665,
-                             0.5688888888888889, 0.4786286704993665,
+  const double gauss_x[5] = {-0.9061798459386640,
+                             -0.5384693101056831,
+                             0.,
+                             0.5384693101056831,
+                             0.9061798459386640};
+  const double gauss_w[5] = {0.2369268850561891,
+                             0.4786286704993665,
+                             0.5688888888888889,
+                             0.4786286704993665,
                              0.2369268850561891};
   // The stretch jumps at X = L, so the column and the block are integrated
   // separately.
-  double exact = 0.;
+  double             exact  = 0.;
   const unsigned int panels = 1000;
   for (unsigned int k = 0; k < 2 * panels; ++k)
     {
-      const double start = (k < panels) ? 0. : L, length = (k < panels) ? L : ell;
-      const double a = start + length * (k % panels) / panels,
-                   b = start + length * (k % panels + 1) / panels;
+      const double start  = (k < panels) ? 0. : L,
+                   length = (k < panels) ? L : ell;
+      const double a      = start + length * (k % panels) / panels,
+                   b      = start + length * (k % panels + 1) / panels;
       for (unsigned int q = 0; q < 5; ++q)
         {
           const double X = 0.5 * (a + b) + 0.5 * (b - a) * gauss_x[q];
-          const double weight_below =
-            (X < L) ? M * g + rho * A * g * (L - X) : rho_block * A * g * (L + ell - X);
-          const double lambda = stretch(weight_below / A, X < L ? mu : mu_block);
+          const double weight_below = (X < L)
+                                        ? M * g + rho * A * g * (L - X)
+                                        : rho_block * A * g * (L + ell - X);
+          const double lambda =
+            stretch(weight_below / A, X < L ? mu : mu_block);
           exact += 0.5 * (b - a) * gauss_w[q] * (lambda - 1.);
         }
     }
   std::cout << "static sag: FE " << u_tip << " mm, closed form " << exact
-            << " mm, relative error " << std::abs(u_tip - exact) / exact << std::endl;
+            << " mm, relative error " << std::abs(u_tip - exact) / exact
+            << std::endl;
   EXPECT_GT(stretch((M * g + rho * A * g * L) / A, mu), 1.4);
   EXPECT_NEAR(u_tip, exact, 1e-7 * exact);
 }
@@ -165,11 +176,16 @@ namespace
   // Smallest root of the two-segment frequency equation, bracketed from
   // below by a scan and refined by bisection.
   double
-  two_segment_rod_frequency(const double E1, const double rho1, const double L,
-                            const double E2, const double rho2, const double ell)
+  two_segment_rod_frequency(const double E1,
+                            const double rho1,
+                            const double L,
+                            const double E2,
+                            const double rho2,
+                            const double ell)
   {
     const auto f = [&](const double omega) {
-      const double k1 = omega * std::sqrt(rho1 / E1), k2 = omega * std::sqrt(rho2 / E2);
+      const double k1 = omega * std::sqrt(rho1 / E1),
+                   k2 = omega * std::sqrt(rho2 / E2);
       return E1 * k1 * std::cos(k1 * L) * std::cos(k2 * ell) -
              E2 * k2 * std::sin(k1 * L) * std::sin(k2 * ell);
     };
@@ -183,22 +199,27 @@ namespace
       }
     for (unsigned int i = 0; i < 200; ++i)
       {
-        const double mid = 0.5 * (low + high);
+        const double mid           = 0.5 * (low + high);
         (f(mid) > 0. ? low : high) = mid;
       }
     return 0.5 * (low + high);
   }
 
   double
-  rod_frequency_1d(const unsigned int degree, const unsigned int n_cells,
-                   const double mu, const double rho, const double mu_block,
-                   const double rho_block)
+  rod_frequency_1d(const unsigned int degree,
+                   const unsigned int n_cells,
+                   const double       mu,
+                   const double       rho,
+                   const double       mu_block,
+                   const double       rho_block)
   {
     std::ostringstream geometry;
-    geometry << "subsection Geometry\n  set Generator arguments = " << n_cells
-             << ": 0: 125: true\n  set Material id function = x > 100 ? 2 : 1\nend\n"
-             << "subsection Finite element\n  set Polynomial degree = " << degree
-             << "\nend\n";
+    geometry
+      << "subsection Geometry\n  set Generator = subdivided_hyper_rectangle\n  set Generator arguments = "
+      << n_cells
+      << ": 0: 125: true\n  set Material id function = x > 100 ? 2 : 1\nend\n"
+      << "subsection Finite element\n  set Polynomial degree = " << degree
+      << "\nend\n";
     const std::string text = parameter_text(
       1,
       geometry.str() + material(1, mu, 100., rho, 100.) +
@@ -215,7 +236,8 @@ TEST(RodWithTipMass, FrequencyConvergesAtRateTwoP)
 {
   const double mu = 10., rho = 1e-6, L = 100., ell = 25., A = 100.;
   const double M = 0.01, rho_block = M / (A * ell), mu_block = 1e3 * mu;
-  const double exact = two_segment_rod_frequency(3 * mu, rho, L, 3 * mu_block, rho_block, ell);
+  const double exact =
+    two_segment_rod_frequency(3 * mu, rho, L, 3 * mu_block, rho_block, ell);
 
   // The stiff block is nearly rigid: the exact frequency is within
   // ell E_1 / (L E_2) ~ 3e-4 of the rigid-mass formula's.
@@ -236,7 +258,8 @@ TEST(RodWithTipMass, FrequencyConvergesAtRateTwoP)
         {
           const double rate = std::log2(errors[k] / errors[k + 1]);
           std::cout << "p = " << degree << ", h = " << 25. / (1 << k)
-                    << ": frequency error " << errors[k] << ", rate " << rate << std::endl;
+                    << ": frequency error " << errors[k] << ", rate " << rate
+                    << std::endl;
           // The rate 2p is reached up to the next term of the error
           // expansion, O(h^2) relative: 0.3 covers it on these meshes.
           EXPECT_NEAR(rate, 2. * degree, 0.3);
@@ -263,28 +286,34 @@ TEST(RodWithTipMass, FrequencyConvergesAtRateTwoP)
 // have converged to that level already on the coarse mesh.
 TEST(SlenderColumn3D, AxialFrequencyMatchesRodTheory)
 {
-  const double mu = 10., kappa = 100., rho = 1e-6, L = 100., ell = 25., half_side = 5.;
+  const double mu = 10., kappa = 100., rho = 1e-6, L = 100., ell = 25.,
+               half_side = 5.;
   const double rho_block = 40. * rho;
-  const double E = 9. * kappa * mu / (3. * kappa + mu);
-  const double nu = (3. * kappa - 2. * mu) / (2. * (3. * kappa + mu));
+  const double E         = 9. * kappa * mu / (3. * kappa + mu);
+  const double nu        = (3. * kappa - 2. * mu) / (2. * (3. * kappa + mu));
   const double exact = two_segment_rod_frequency(E, rho, L, E, rho_block, ell);
 
   std::vector<double> errors;
   for (const unsigned int n : {5u, 10u})
     {
       std::ostringstream sections;
-      sections << "subsection Geometry\n  set Generator arguments = "
-               << box_arguments(3, n, n / 5, L + ell, half_side)
-               << "\n  set Material id function = x > 100 ? 2 : 1\nend\n"
-               << material(1, mu, kappa, rho, 1.) << material(2, mu, kappa, rho_block, 1.)
-               << "subsection Loads and constraints\n  set Fixed components = 0: x, 2: y, "
-                  "4: z\nend\n";
-      SoftRobotDynamics<3> column(read(parameter_text(3, sections.str())), MPI_COMM_WORLD);
+      sections
+        << "subsection Geometry\n  set Generator = subdivided_hyper_rectangle\n  set Generator arguments = "
+        << box_arguments(3, n, n / 5, L + ell, half_side)
+        << "\n  set Material id function = x > 100 ? 2 : 1\nend\n"
+        << material(1, mu, kappa, rho, 1.)
+        << material(2, mu, kappa, rho_block, 1.)
+        << "subsection Loads and constraints\n  set Fixed components = 0: x, 2: y, "
+           "4: z\nend\n";
+      SoftRobotDynamics<3> column(read(parameter_text(3, sections.str())),
+                                  MPI_COMM_WORLD);
       column.make_grid();
       column.setup_system();
-      errors.push_back(std::abs(linearised_frequencies(column)[0] - exact) / exact);
-      std::cout << "3D column, " << n << " cells along the axis: frequency error "
-                << errors.back() << std::endl;
+      errors.push_back(std::abs(linearised_frequencies(column)[0] - exact) /
+                       exact);
+      std::cout << "3D column, " << n
+                << " cells along the axis: frequency error " << errors.back()
+                << std::endl;
     }
   // Rayleigh-Love: k^2 r_p^2 nu^2 / 2 with k = omega/c and r_p^2 = (2a)^2/6.
   const double love = 0.5 * nu * nu * std::pow(exact * std::sqrt(rho / E), 2) *
@@ -310,23 +339,25 @@ energy_history(const double alpha)
 {
   const double mu = 10., rho = 1e-6, L = 10., c = std::sqrt(3. * mu / rho);
   std::ostringstream sections;
-  sections << "subsection Geometry\n  set Generator arguments = "
-           << box_arguments(dim, 4, 2, L, 2.) << "\nend\n"
-           << "subsection Finite element\n  set Polynomial degree = 1\nend\n"
-           << material(1, mu, 10. * mu, rho, 1.)
-           << "subsection Loads and constraints\n  set Fixed components = 0: "
-           << std::string("xyz").substr(0, dim) << "\n  set Function constants = c=" << c
-           << ", L=" << L << "\nend\n"
-           << "subsection Initial conditions\n  set Velocity = "
-           << dim_list(dim, {"1e-9*c*x/L", "0.5e-9*c*x/L", "-0.3e-9*c*x/L"}, "; ")
-           << "\nend\n"
-           << "subsection Time integration\n  set Alpha = " << alpha
-           << "\n  set Time step = " << 0.02 * L / c << "\n  set End time = "
-           << 20. * L / c << "\nend\n"
-           << "subsection Nonlinear solver\n  set Absolute tolerance = 0\n"
-              "  set Relative tolerance = 1e-11\nend\n"
-           << "subsection Linear solver\n  set Solver = Direct\nend\n";
-  SoftRobotDynamics<dim> body(read(parameter_text(dim, sections.str())), MPI_COMM_WORLD);
+  sections
+    << "subsection Geometry\n  set Generator = subdivided_hyper_rectangle\n  set Generator arguments = "
+    << box_arguments(dim, 4, 2, L, 2.) << "\nend\n"
+    << "subsection Finite element\n  set Polynomial degree = 1\nend\n"
+    << material(1, mu, 10. * mu, rho, 1.)
+    << "subsection Loads and constraints\n  set Fixed components = 0: "
+    << std::string("xyz").substr(0, dim)
+    << "\n  set Function constants = c=" << c << ", L=" << L << "\nend\n"
+    << "subsection Initial conditions\n  set Velocity = "
+    << dim_list(dim, {"1e-9*c*x/L", "0.5e-9*c*x/L", "-0.3e-9*c*x/L"}, "; ")
+    << "\nend\n"
+    << "subsection Time integration\n  set Alpha = " << alpha
+    << "\n  set Time step = " << 0.02 * L / c
+    << "\n  set End time = " << 20. * L / c << "\nend\n"
+    << "subsection Nonlinear solver\n  set Absolute tolerance = 0\n"
+       "  set Relative tolerance = 1e-11\nend\n"
+    << "subsection Linear solver\n  set Solver = Direct\nend\n";
+  SoftRobotDynamics<dim> body(read(parameter_text(dim, sections.str())),
+                              MPI_COMM_WORLD);
   body.make_grid();
   body.setup_system();
   body.initialize_state();
@@ -344,16 +375,17 @@ TYPED_TEST(SolverTest, TrapezoidalRuleConservesEnergy)
   double drift = 0.;
   for (const double e : energy)
     drift = std::max(drift, std::abs(e / energy[0] - 1.));
-  std::cout << dim << "D: largest relative energy change over 1000 steps: " << drift
+  std::cout << dim
+            << "D: largest relative energy change over 1000 steps: " << drift
             << std::endl;
   EXPECT_LT(drift, 1e-8);
 }
 
 TYPED_TEST(SolverTest, HHTNeverGainsEnergy)
 {
-  constexpr int             dim    = TypeParam::value;
-  const std::vector<double> energy = energy_history<dim>(-0.1);
-  double largest = 0.;
+  constexpr int             dim     = TypeParam::value;
+  const std::vector<double> energy  = energy_history<dim>(-0.1);
+  double                    largest = 0.;
   for (const double e : energy)
     largest = std::max(largest, e / energy[0]);
   std::cout << dim << "D, alpha = -0.1: largest E/E0 = " << largest
@@ -377,59 +409,75 @@ template <int dim>
 void
 check_patch_test(const bool simplices, const unsigned int degree)
 {
-  const double         mu = 10., kappa = 50.;
-  Tensor<2, dim>       F0;
-  const double         stretches[3] = {1.3, 0.8, 1.1};
+  const double   mu = 10., kappa = 50.;
+  Tensor<2, dim> F0;
+  const double   stretches[3] = {1.3, 0.8, 1.1};
   for (unsigned int d = 0; d < dim; ++d)
     F0[d][d] = stretches[d];
-  const Tensor<2, dim> P0 = NeoHookeanEnergy<dim>(mu, kappa).first_piola_closed_form(F0);
-  std::string          traction_constants;
+  const Tensor<2, dim> P0 =
+    NeoHookeanEnergy<dim>(mu, kappa).first_piola_closed_form(F0);
+  std::string traction_constants;
   for (unsigned int d = 0; d < dim; ++d)
     {
       std::ostringstream constant;
-      constant << (d > 0 ? ", P" : "P") << d << '=' << std::setprecision(17) << P0[d][d];
+      constant << (d > 0 ? ", P" : "P") << d << '=' << std::setprecision(17)
+               << P0[d][d];
       traction_constants += constant.str();
     }
 
   std::ostringstream sections;
-  sections << "subsection Geometry\n  set Generator arguments = "
-           << box_arguments(dim, simplices ? 2 : 4, simplices ? 2 : 4, 1., 1.)
-           << "\n  set Random distortion = 0.25\n"
-           << "  set Convert to simplices = " << (simplices ? "true" : "false") << "\nend\n"
-           << "subsection Finite element\n  set Polynomial degree = " << degree << "\nend\n"
-           << material(1, mu, kappa, 1e-6, 1.)
-           << "subsection Loads and constraints\n  set Fixed components = "
-           << dim_list(dim, {"0: x", "2: y", "4: z"}, ", ")
-           << "\n  set Traction boundary ids = " << dim_list(dim, {"1", "3", "5"}, ", ")
-           << "\n  set Traction = "
-           << dim_list(dim, {"x > 0.999 ? P0 : 0", "y > 0.999 ? P1 : 0", "z > 0.999 ? P2 : 0"}, "; ")
-           << "\n  set Function constants = " << traction_constants
-           << "\nend\n"
-           << "subsection Initial conditions\n  set Load steps = 4\nend\n"
-           << "subsection Nonlinear solver\n  set Absolute tolerance = 1e-11\n"
-              "  set Relative tolerance = 0\nend\n"
-           << "subsection Linear solver\n  set Solver = Direct\nend\n";
-  SoftRobotDynamics<dim> body(read(parameter_text(dim, sections.str())), MPI_COMM_WORLD);
+  sections
+    << "subsection Geometry\n  set Generator = subdivided_hyper_rectangle\n  set Generator arguments = "
+    << box_arguments(dim, simplices ? 2 : 4, simplices ? 2 : 4, 1., 1.)
+    << "\n  set Random distortion = 0.25\n"
+    << "  set Convert to simplices = " << (simplices ? "true" : "false")
+    << "\nend\n"
+    << "subsection Finite element\n  set Polynomial degree = " << degree
+    << "\nend\n"
+    << material(1, mu, kappa, 1e-6, 1.)
+    << "subsection Loads and constraints\n  set Fixed components = "
+    << dim_list(dim, {"0: x", "2: y", "4: z"}, ", ")
+    << "\n  set Traction boundary ids = "
+    << dim_list(dim, {"1", "3", "5"}, ", ") << "\n  set Traction = "
+    << dim_list(dim,
+                {"x > 0.999 ? P0 : 0",
+                 "y > 0.999 ? P1 : 0",
+                 "z > 0.999 ? P2 : 0"},
+                "; ")
+    << "\n  set Function constants = " << traction_constants << "\nend\n"
+    << "subsection Initial conditions\n  set Load steps = 4\nend\n"
+    << "subsection Nonlinear solver\n  set Absolute tolerance = 1e-11\n"
+       "  set Relative tolerance = 0\nend\n"
+    << "subsection Linear solver\n  set Solver = Direct\nend\n";
+  SoftRobotDynamics<dim> body(read(parameter_text(dim, sections.str())),
+                              MPI_COMM_WORLD);
   body.make_grid();
   body.setup_system();
   body.solve_static_equilibrium(0.);
 
   std::map<types::global_dof_index, Point<dim>> support_points;
-  DoFTools::map_dofs_to_support_points(body.get_mapping(), body.get_dof_handler(), support_points);
+  DoFTools::map_dofs_to_support_points(body.get_mapping(),
+                                       body.get_dof_handler(),
+                                       support_points);
   double largest_error = 0.;
   for (const auto &cell : body.get_dof_handler().active_cell_iterators())
     {
-      std::vector<types::global_dof_index> dofs(cell->get_fe().n_dofs_per_cell());
+      std::vector<types::global_dof_index> dofs(
+        cell->get_fe().n_dofs_per_cell());
       cell->get_dof_indices(dofs);
       for (unsigned int i = 0; i < dofs.size(); ++i)
         {
-          const unsigned int c     = cell->get_fe().system_to_component_index(i).first;
-          const double       exact = (stretches[c] - 1.) * support_points[dofs[i]][c];
-          largest_error = std::max(largest_error, std::abs(body.displacement()[dofs[i]] - exact));
+          const unsigned int c =
+            cell->get_fe().system_to_component_index(i).first;
+          const double exact = (stretches[c] - 1.) * support_points[dofs[i]][c];
+          largest_error =
+            std::max(largest_error,
+                     std::abs(body.displacement()[dofs[i]] - exact));
         }
     }
-  std::cout << dim << "D patch test (" << (simplices ? "simplices" : "hypercubes") << ", p = "
-            << degree << "): largest nodal error " << largest_error << " mm" << std::endl;
+  std::cout << dim << "D patch test ("
+            << (simplices ? "simplices" : "hypercubes") << ", p = " << degree
+            << "): largest nodal error " << largest_error << " mm" << std::endl;
   EXPECT_LT(largest_error, 1e-10);
 }
 

@@ -4,10 +4,8 @@
 #ifndef soft_robot_tests_solver_test_tools_h
 #define soft_robot_tests_solver_test_tools_h
 
-#include <deal.II/lac/lapack_full_matrix.h>
-
 #include <core/soft_robot_dynamics.h>
-
+#include <deal.II/lac/lapack_full_matrix.h>
 #include <sstream>
 #include <string>
 
@@ -19,11 +17,12 @@ namespace SoftRobot::Testing
   parameter_text(const unsigned int dim, const std::string &sections)
   {
     std::ostringstream text;
-    text << "subsection Problem\n  set Dimension = " << dim
-         << "\n  set Output directory = test_output\nend\n"
-         << "subsection Output\n  set Write VTU = false\n  set Tip region = boundary 1\n"
-         << "  set Progress interval = 0\nend\n"
-         << sections;
+    text
+      << "subsection Problem\n  set Dimension = " << dim
+      << "\n  set Output directory = test_output\nend\n"
+      << "subsection Output\n  set Write VTU = false\n  set Tip region = boundary 1\n"
+      << "  set Progress interval = 0\nend\n"
+      << sections;
     return text.str();
   }
 
@@ -38,7 +37,7 @@ namespace SoftRobot::Testing
                 const double       width)
   {
     std::ostringstream text;
-    const auto list = [&](const auto first, const auto rest) {
+    const auto         list = [&](const auto first, const auto rest) {
       std::ostringstream out;
       out << first;
       for (unsigned int d = 1; d < dim; ++d)
@@ -61,7 +60,8 @@ namespace SoftRobot::Testing
     const auto &mass        = model.mass_matrix();
     const auto &constraints = model.get_constraints();
     std::vector<types::global_dof_index> free_dofs;
-    for (types::global_dof_index i = 0; i < model.get_dof_handler().n_dofs(); ++i)
+    for (types::global_dof_index i = 0; i < model.get_dof_handler().n_dofs();
+         ++i)
       if (!constraints.is_constrained(i))
         free_dofs.push_back(i);
     const unsigned int       n = free_dofs.size();
@@ -90,7 +90,7 @@ namespace SoftRobot::Testing
     double low = 0., high = 0.5 * M_PI - 1e-15;
     for (unsigned int i = 0; i < 200; ++i)
       {
-        const double mid = 0.5 * (low + high);
+        const double mid                           = 0.5 * (low + high);
         (mid * std::tan(mid) < ratio ? low : high) = mid;
       }
     return 0.5 * (low + high);

@@ -2,7 +2,6 @@
 // need MPI, so it is initialised here once for every GoogleTest case.
 
 #include <deal.II/base/mpi.h>
-
 #include <gtest/gtest.h>
 
 int

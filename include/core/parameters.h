@@ -17,7 +17,6 @@
 #define soft_robot_core_parameters_h
 
 #include <deal.II/base/parameter_handler.h>
-
 #include <map>
 #include <string>
 #include <vector>
@@ -162,6 +161,7 @@ namespace SoftRobot
       double       relative_tolerance;
       bool         line_search;
       unsigned int max_line_search_steps;
+      bool         verbose;
 
       static void
       declare_parameters(ParameterHandler &prm);

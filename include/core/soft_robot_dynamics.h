@@ -12,23 +12,29 @@
 // vanishing where the displacement is prescribed, is
 // @f[
 //   \int_{\Omega_0} \rho_0\,\delta\mathbf u\cdot\ddot{\mathbf u}\,dV
-//   + \int_{\Omega_0} \nabla_0\delta\mathbf u :
-//       \left(\mathbf P + \mathbf P_\text{v}\right) dV
+//   + \int_{\Omega_0} \nabla_0\delta\mathbf u : \mathbf P\,dV
+//   + \delta\mathbf u\cdot\mathbf C\dot{\mathbf u}
 //   = \int_{\Omega_0} \rho_0\,\delta\mathbf u\cdot\mathbf g\,dV
 //   + \int_{\Gamma_\text{N}} \delta\mathbf u\cdot\bar{\mathbf t}\,dA,
 // @f]
-// with the elastic stress $\mathbf P = \mathbf F\mathbf S$ and the viscous
-// stress of stiffness-proportional (Rayleigh) damping,
+// with the elastic stress $\mathbf P = \mathbf F\mathbf S$ and the
+// stiffness-proportional (Rayleigh) damping matrix of the reference study,
+// $\mathbf C = \zeta\mathbf K$. In a nonlinear problem "the stiffness" has
+// to be made precise; we use
 // @f[
-//   \mathbf P_\text{v} = \zeta\,\frac{\partial\mathbf P}{\partial\mathbf F}
-//   : \dot{\mathbf F}
-//   = \zeta\left(\dot{\mathbf F}\mathbf S
-//     + \mathbf F\left(\mathcal C : \dot{\mathbf E}\right)\right),
-//   \qquad \dot{\mathbf E} = \mathrm{sym}(\mathbf F^T\dot{\mathbf F}),
+//   C_{ij} = \int_{\Omega_0} \zeta\;\delta\mathbf E_i : \mathcal C(\mathbf
+//   u_n) : \delta\mathbf E_j\,dV,\qquad
+//   \delta\mathbf E_i = \mathrm{sym}(\mathbf F^T\nabla_0\mathbf N_i),
 // @f]
-// whose discrete form is exactly $\zeta\,\mathbf K(\mathbf u)\,\mathbf v$,
-// the damping matrix $\mathbf C = \zeta\mathbf K$ of the reference study,
-// evaluated with the current tangent stiffness.
+// the material part of the tangent stiffness at the start of each time
+// step (the last converged state), with each material's own $\zeta$. It is
+// symmetric and positive semi-definite, so the damping only dissipates;
+// it leaves rigid-body motions undamped, also rotations of a prestressed
+// body (which the geometric part of $\mathbf K$ would damp); and, being
+// constant within a step, it keeps Newton's method exact (quadratically
+// convergent) at no extra assembly cost: the matrix of the converged state
+// of one step is assembled anyway in the last Newton iteration and is kept
+// for the next step.
 //
 // For the reduced models every integral carries the material's `Section`
 // factor (cross-section area in 1D, thickness in 2D).
@@ -36,30 +42,24 @@
 #ifndef soft_robot_core_soft_robot_dynamics_h
 #define soft_robot_core_soft_robot_dynamics_h
 
+#include <core/parameters.h>
 #include <deal.II/base/conditional_ostream.h>
 #include <deal.II/base/function_parser.h>
 #include <deal.II/base/index_set.h>
 #include <deal.II/base/quadrature.h>
 #include <deal.II/base/timer.h>
-
 #include <deal.II/distributed/shared_tria.h>
-
 #include <deal.II/dofs/dof_handler.h>
-
 #include <deal.II/fe/fe_system.h>
 #include <deal.II/fe/mapping.h>
-
 #include <deal.II/lac/affine_constraints.h>
 #include <deal.II/lac/trilinos_sparse_matrix.h>
 #include <deal.II/lac/trilinos_vector.h>
-
-#include <core/parameters.h>
-#include <material/neo_hookean_energy.h>
-#include <time_integration/hht_stepper.h>
-
 #include <fstream>
 #include <functional>
+#include <material/neo_hookean_energy.h>
 #include <memory>
+#include <time_integration/hht_stepper.h>
 #include <vector>
 
 namespace SoftRobot
@@ -87,15 +87,15 @@ namespace SoftRobot
 
   // @sect4{Energies of the motion}
   //
-  // The terms of the energy balance, all in mJ (= kg mm^2/s^2 * 1e-3 ...
-  // we keep the program's units: kg mm^2 s^-2, i.e. micro-joules).
+  // The terms of the energy balance, in the program's units kg mm^2 s^-2,
+  // i.e. micro-joules.
   struct EnergyAccount
   {
     double kinetic             = 0.; // $\tfrac12\mathbf v^T\mathbf M\mathbf v$
     double strain              = 0.; // $\int\Psi\,dV$
     double gravity_potential   = 0.; // $-\int\rho_0\mathbf g\cdot\mathbf u\,dV$
     double traction_work       = 0.; // work done by the tractions so far
-    double damping_dissipation = 0.; // energy taken by the viscous stress
+    double damping_dissipation = 0.; // energy taken by the damping forces
     double
     balance(const double initial_total) const
     {
@@ -111,9 +111,9 @@ namespace SoftRobot
   template <int dim>
   void
   initialize_vector_function(FunctionParser<dim> &function,
-                             const std::string &  expression,
-                             const std::string &  constants,
-                             const std::string &  entry_name);
+                             const std::string   &expression,
+                             const std::string   &constants,
+                             const std::string   &entry_name);
 
 
 
@@ -218,10 +218,14 @@ namespace SoftRobot
     // What assemble_system() computes besides the matrix and residual.
     struct AssemblyResult
     {
-      double strain_energy        = 0.;
+      double strain_energy = 0.;
       // The size of the forces that balance in the residual (internal
       // and inertial), against which round-off is judged.
-      double force_scale          = 0.;
+      double force_scale = 0.;
+      // For static problems the total potential energy, which Newton's
+      // line search then decreases; not a number for the dynamic steps,
+      // whose line search decreases the norm of the residual.
+      double potential_energy     = std::numeric_limits<double>::quiet_NaN();
       double min_jacobian         = std::numeric_limits<double>::max();
       bool   inverted_point_found = false;
     };
@@ -235,17 +239,14 @@ namespace SoftRobot
                             TrilinosWrappers::MPI::Vector &force) const;
     AssemblyResult
     assemble_internal_force(const TrilinosWrappers::MPI::Vector &u,
-                            const TrilinosWrappers::MPI::Vector &v,
                             const bool                           with_matrix,
-                            const double                         velocity_coefficient,
-                            TrilinosWrappers::MPI::Vector &      internal_force,
-                            TrilinosWrappers::MPI::Vector *      damping_force);
+                            TrilinosWrappers::MPI::Vector &internal_force);
     void
     solve_nonlinear_timestep(const double dt);
     unsigned int
-    solve_linear_system(TrilinosWrappers::SparseMatrix &     matrix,
+    solve_linear_system(TrilinosWrappers::SparseMatrix      &matrix,
                         const TrilinosWrappers::MPI::Vector &rhs,
-                        TrilinosWrappers::MPI::Vector &      solution);
+                        TrilinosWrappers::MPI::Vector       &solution);
     void
     compute_initial_acceleration();
     void
@@ -258,9 +259,9 @@ namespace SoftRobot
                                    TrilinosWrappers::MPI::Vector &)>;
     AssemblyResult
     newton_solve(TrilinosWrappers::MPI::Vector &u,
-                 const ResidualEvaluator &      evaluate,
+                 const ResidualEvaluator       &evaluate,
                  const double                   force_scale,
-                 unsigned int &                 iterations);
+                 unsigned int                  &iterations);
     void
     output_results(const unsigned int output_index);
     void
@@ -274,16 +275,17 @@ namespace SoftRobot
     evaluate_residual(const TrilinosWrappers::MPI::Vector &u_trial,
                       const double                         dt,
                       const bool                           with_matrix,
-                      TrilinosWrappers::MPI::Vector &      residual);
+                      TrilinosWrappers::MPI::Vector       &residual);
 
     // The scalar $\zeta$, $\rho_0$, section factor per cell.
     const Parameters::Material &
-    material_of(const typename DoFHandler<dim>::active_cell_iterator &cell) const;
+    material_of(
+      const typename DoFHandler<dim>::active_cell_iterator &cell) const;
 
     const Parameters::AllParameters parameters;
 
-    MPI_Comm           mpi_communicator;
-    ConditionalOStream pcout;
+    MPI_Comm            mpi_communicator;
+    ConditionalOStream  pcout;
     mutable TimerOutput computing_timer;
 
     parallel::shared::Triangulation<dim> triangulation;
@@ -301,11 +303,18 @@ namespace SoftRobot
     std::map<types::material_id, NeoHookeanEnergy<dim>> materials;
     std::map<types::material_id, double>                densities;
 
-    HHTStepper                   stepper;
-    mutable FunctionParser<dim>  traction_function;
-    Tensor<1, dim>               gravity;
+    HHTStepper                  stepper;
+    mutable FunctionParser<dim> traction_function;
+    FunctionParser<dim>         initial_displacement;
+    FunctionParser<dim>         initial_velocity;
+    Tensor<1, dim>              gravity;
 
     TrilinosWrappers::SparseMatrix mass;
+    // The damping matrix of the current step, and the one of the state
+    // assembled last, which becomes the next step's when the step succeeds.
+    TrilinosWrappers::SparseMatrix damping_matrix;
+    TrilinosWrappers::SparseMatrix next_damping_matrix;
+    bool                           has_damping = false;
     TrilinosWrappers::MPI::Vector  gravity_force;
     TrilinosWrappers::SparseMatrix system_matrix;
     State                          current;
@@ -318,16 +327,16 @@ namespace SoftRobot
     double        initial_total_energy = 0.;
 
     double       time_step;
-    unsigned int step_number                = 0;
-    unsigned int steps_since_cutback        = 0;
-    unsigned int total_newton_iterations    = 0;
-    unsigned int total_linear_iterations    = 0;
-    unsigned int total_cutbacks             = 0;
-    unsigned int last_newton_iterations     = 0;
-    double       last_residual              = 0.;
+    unsigned int step_number             = 0;
+    unsigned int steps_since_cutback     = 0;
+    unsigned int total_newton_iterations = 0;
+    unsigned int total_linear_iterations = 0;
+    unsigned int total_cutbacks          = 0;
+    unsigned int last_newton_iterations  = 0;
+    double       last_residual           = 0.;
 
-    std::ofstream                                    trajectory;
-    std::vector<std::pair<double, std::string>>      pvd_records;
+    std::ofstream                               trajectory;
+    std::vector<std::pair<double, std::string>> pvd_records;
   };
 } // namespace SoftRobot
 

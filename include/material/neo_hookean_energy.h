@@ -77,12 +77,10 @@
 #ifndef soft_robot_material_neo_hookean_energy_h
 #define soft_robot_material_neo_hookean_energy_h
 
+#include <cmath>
 #include <deal.II/base/symmetric_tensor.h>
 #include <deal.II/base/tensor.h>
-
 #include <deal.II/differentiation/ad/ad_number_traits.h>
-
-#include <cmath>
 
 namespace SoftRobot
 {
@@ -96,9 +94,9 @@ namespace SoftRobot
   template <int dim>
   struct MaterialResponse
   {
-    double                    energy = 0.;
-    SymmetricTensor<2, dim>   second_piola;
-    SymmetricTensor<4, dim>   material_tangent;
+    double                  energy = 0.;
+    SymmetricTensor<2, dim> second_piola;
+    SymmetricTensor<4, dim> material_tangent;
   };
 
 
@@ -121,7 +119,7 @@ namespace SoftRobot
     // $\mathbf H = \mathbf F - \mathbf I$ (given as $\mathbf H$ so that
     // small strains keep their digits), by automatic differentiation.
     void
-    evaluate(const Tensor<2, dim> &displacement_gradient,
+    evaluate(const Tensor<2, dim>  &displacement_gradient,
              MaterialResponse<dim> &response) const;
 
     // The Green-Lagrange strain of a displacement gradient, without
@@ -138,7 +136,8 @@ namespace SoftRobot
     // for the incompressible reduced models the three-dimensional volume
     // ratio is one.
     SymmetricTensor<2, dim>
-    cauchy_stress(const Tensor<2, dim> &F, const SymmetricTensor<2, dim> &S) const;
+    cauchy_stress(const Tensor<2, dim>          &F,
+                  const SymmetricTensor<2, dim> &S) const;
 
     // The determinant of the three-dimensional deformation gradient the
     // model stands for: $\det\mathbf F$ in 3D, one for the incompressible
@@ -179,7 +178,7 @@ namespace SoftRobot
   // checking the linearisation do.
   template <int dim>
   Tensor<4, dim>
-  first_piola_tangent(const Tensor<2, dim> &         F,
+  first_piola_tangent(const Tensor<2, dim>          &F,
                       const SymmetricTensor<2, dim> &S,
                       const SymmetricTensor<4, dim> &CC);
 
@@ -270,7 +269,8 @@ namespace SoftRobot
         const Number d  = 2. * I1 + 4. * I2 + 8. * I3;
         const Number g  = internal::inverse_cube_root_minus_one(d);
         return 0.5 * mu *
-                 (internal::cube_root_remainder(d) - 4. * I2 - 8. * I3 + 2. * I1 * g) +
+                 (internal::cube_root_remainder(d) - 4. * I2 - 8. * I3 +
+                  2. * I1 * g) +
                0.25 * kappa * internal::d_minus_log1p(d);
       }
     else if constexpr (dim == 2)

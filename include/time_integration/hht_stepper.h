@@ -49,7 +49,6 @@
 #define soft_robot_time_integration_hht_stepper_h
 
 #include <deal.II/base/tensor.h>
-
 #include <string>
 
 namespace SoftRobot
@@ -111,7 +110,7 @@ namespace SoftRobot
                          const VectorType &v_old,
                          const VectorType &a_old,
                          const double      dt,
-                         VectorType &      u_new) const;
+                         VectorType       &u_new) const;
 
     // Newmark's relations: velocity and acceleration at $t_{n+1}$ from the
     // new displacement and the old state.
@@ -122,8 +121,8 @@ namespace SoftRobot
                       const VectorType &v_old,
                       const VectorType &a_old,
                       const double      dt,
-                      VectorType &      v_new,
-                      VectorType &      a_new) const;
+                      VectorType       &v_new,
+                      VectorType       &a_new) const;
 
     // @sect4{Properties of the scheme on the model problem}
     //
@@ -169,7 +168,7 @@ namespace SoftRobot
                                    const VectorType &v_old,
                                    const VectorType &a_old,
                                    const double      dt,
-                                   VectorType &      u_new) const
+                                   VectorType       &u_new) const
   {
     u_new = u_old;
     u_new.add(dt, v_old, 0.5 * dt * dt, a_old);
@@ -184,8 +183,8 @@ namespace SoftRobot
                                 const VectorType &v_old,
                                 const VectorType &a_old,
                                 const double      dt,
-                                VectorType &      v_new,
-                                VectorType &      a_new) const
+                                VectorType       &v_new,
+                                VectorType       &a_new) const
   {
     a_new = u_new;
     a_new.add(-1., u_old, -dt, v_old);

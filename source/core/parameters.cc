@@ -1,12 +1,10 @@
+#include <core/parameters.h>
 #include <deal.II/base/exceptions.h>
 #include <deal.II/base/utilities.h>
-
-#include <core/parameters.h>
-
 #include <filesystem>
 #include <fstream>
-#include <sstream>
 #include <limits>
+#include <sstream>
 
 namespace SoftRobot
 {
@@ -53,12 +51,12 @@ namespace SoftRobot
                         "Where the mesh comes from: one of deal.II's "
                         "GridGenerator functions, or a gmsh file.");
       prm.declare_entry("Generator",
-                        "subdivided_hyper_rectangle",
+                        "hyper_cube",
                         Patterns::Anything(),
                         "Name of a GridGenerator function, as accepted by "
                         "GridGenerator::generate_from_name_and_arguments().");
       prm.declare_entry("Generator arguments",
-                        "1: 0: 1: true",
+                        "0: 1: true",
                         Patterns::Anything(),
                         "Arguments of that function, separated by colons; "
                         "points and vectors as comma-separated coordinates. "
@@ -69,7 +67,7 @@ namespace SoftRobot
                         "",
                         Patterns::Anything(),
                         "A gmsh .msh file (format 2.2 or 4.1), relative to "
-                        "the directory the program runs in. Physical volume "
+                        "the directory of the parameter file. Physical volume "
                         "tags become material ids, physical surface tags "
                         "boundary ids.");
       prm.declare_entry("Global refinements",
@@ -421,9 +419,10 @@ namespace SoftRobot
       prm.declare_entry("Relative tolerance",
                         "1e-9",
                         Patterns::Double(0, 1),
-                        "... or below this fraction of the norm of the "
-                        "external forces and of the step's first residual, "
-                        "whichever is larger.");
+                        "... or below this fraction of a force scale: the "
+                        "largest of the norms of the external forces, the "
+                        "internal and inertial forces, and the step's first "
+                        "residual.");
       prm.declare_entry("Line search",
                         "true",
                         Patterns::Bool(),
@@ -433,6 +432,11 @@ namespace SoftRobot
                         "5",
                         Patterns::Integer(0, 30),
                         "Halvings of the Newton step before the step fails.");
+      prm.declare_entry("Verbose",
+                        "false",
+                        Patterns::Bool(),
+                        "Print the residual, the linear iterations and the "
+                        "step length of every Newton iteration.");
       prm.leave_subsection();
     }
 
@@ -445,6 +449,7 @@ namespace SoftRobot
       relative_tolerance    = prm.get_double("Relative tolerance");
       line_search           = prm.get_bool("Line search");
       max_line_search_steps = prm.get_integer("Max line search steps");
+      verbose               = prm.get_bool("Verbose");
       prm.leave_subsection();
     }
 
@@ -522,7 +527,7 @@ namespace SoftRobot
                         "tip_trajectory.csv",
                         Patterns::Anything(),
                         "CSV file in the output directory with one row per "
-                        "time step: time, step, tip displacement and "
+                        "time step: time, time step, tip displacement and "
                         "velocity, energies, Newton iterations.");
       prm.declare_entry("Progress interval",
                         "10",
@@ -540,10 +545,13 @@ namespace SoftRobot
       output_interval   = prm.get_double("Output interval");
       trajectory_file   = prm.get("Trajectory file");
       progress_interval = prm.get_integer("Progress interval");
-      const auto words  = Utilities::split_string_list(prm.get("Tip region"), ' ');
-      AssertThrow(words.size() == 2 && (words[0] == "boundary" || words[0] == "material"),
+      const auto words =
+        Utilities::split_string_list(prm.get("Tip region"), ' ');
+      AssertThrow(words.size() == 2 &&
+                    (words[0] == "boundary" || words[0] == "material"),
                   ExcMessage("Output/Tip region must be 'boundary <id>' or "
-                             "'material <id>', not '" + prm.get("Tip region") + "'."));
+                             "'material <id>', not '" +
+                             prm.get("Tip region") + "'."));
       tip_region_type = words[0];
       tip_region_id   = Utilities::string_to_int(words[1]);
       prm.leave_subsection();
@@ -592,7 +600,8 @@ namespace SoftRobot
     {
       std::ifstream file(filename);
       AssertThrow(file,
-                  ExcMessage("Cannot open the parameter file '" + filename + "'."));
+                  ExcMessage("Cannot open the parameter file '" + filename +
+                             "'."));
       source_name = filename;
 
       // File names in the parameter file (include statements, the mesh)
@@ -645,11 +654,13 @@ namespace SoftRobot
                              ") must not be smaller than Minimum time step (" +
                              std::to_string(minimum_time_step) + ")."));
       AssertThrow((beta < 0) == (gamma < 0),
-                  ExcMessage(where + "Time integration/Beta and Gamma must "
+                  ExcMessage(where +
+                             "Time integration/Beta and Gamma must "
                              "be given both (values in (0, 1] and [0, 1.5]) "
                              "or neither (negative values)."));
       AssertThrow(!by_id.empty(),
-                  ExcMessage(where + "no material is defined: give at least "
+                  ExcMessage(where +
+                             "no material is defined: give at least "
                              "one subsection 'Material <id>' (id 0 to " +
                              std::to_string(max_material_id) +
                              ") with a non-empty Name."));
@@ -661,18 +672,21 @@ namespace SoftRobot
       for (const auto &[id, letters] : fixed_components)
         {
           AssertThrow(!letters.empty() &&
-                        letters.find_first_not_of(std::string("xyz").substr(0, dimension)) ==
+                        letters.find_first_not_of(
+                          std::string("xyz").substr(0, dimension)) ==
                           std::string::npos,
-                      ExcMessage(where + "Loads and constraints/Fixed "
-                                 "components: boundary " + std::to_string(id) +
-                                 " has '" + letters + "', but only the letters '" +
+                      ExcMessage(where +
+                                 "Loads and constraints/Fixed "
+                                 "components: boundary " +
+                                 std::to_string(id) + " has '" + letters +
+                                 "', but only the letters '" +
                                  std::string("xyz").substr(0, dimension) +
-                                 "' are allowed in " + std::to_string(dimension) +
-                                 "D."));
+                                 "' are allowed in " +
+                                 std::to_string(dimension) + "D."));
         }
       AssertThrow(mesh_source != "file" || !mesh_file.empty(),
                   ExcMessage(where + "Geometry/Mesh file must name a gmsh "
-                             "file when Mesh source = file."));
+                                     "file when Mesh source = file."));
       AssertThrow(mesh_source != "file" || std::ifstream(mesh_file),
                   ExcMessage(where + "Geometry/Mesh file: cannot open '" +
                              mesh_file + "'."));

@@ -4,39 +4,27 @@
 // iteration: the assembly of the internal force vector (elastic plus
 // viscous stresses) with its tangent matrix, and of the external forces.
 
-#include <deal.II/fe/fe_values.h>
-
 #include <core/soft_robot_dynamics.h>
+#include <deal.II/fe/fe_values.h>
 
 namespace SoftRobot
 {
   // @sect4{SoftRobotDynamics::assemble_internal_force}
   //
   // At each quadrature point the deformation gradient $\mathbf F =
-  // \mathbf I + \nabla_0\mathbf u$ and its rate $\dot{\mathbf F} = \nabla_0
-  // \mathbf v$ give, through the material's automatic derivatives, the
-  // stress $\mathbf S$ and tangent $\mathcal C$. For a test function
-  // $\mathbf N_i$ with $\delta\mathbf E_i = \mathrm{sym}(\mathbf F^T
-  // \nabla_0\mathbf N_i)$ the internal force is
+  // \mathbf I + \nabla_0\mathbf u$ gives, through the material's automatic
+  // derivatives, the stress $\mathbf S$ and the tangent $\mathcal C$. For a
+  // test function $\mathbf N_i$ with $\delta\mathbf E_i = \mathrm{sym}(
+  // \mathbf F^T\nabla_0\mathbf N_i)$ the internal force and the tangent
+  // stiffness are
   // @f[
-  //   f_i = \int \delta\mathbf E_i : \left(\mathbf S
-  //        + \zeta\,\mathcal C : \dot{\mathbf E}\right)
-  //        + \zeta\,\nabla_0\mathbf N_i : \dot{\mathbf F}\mathbf S \; dV,
-  // @f]
-  // i.e. $\nabla_0\mathbf N_i : (\mathbf P + \mathbf P_\text{v})$ written
-  // with the symmetric $\delta\mathbf E_i$. The tangent stiffness is
-  // @f[
+  //   f_i = \int \delta\mathbf E_i : \mathbf S\;dV,\qquad
   //   K_{ij} = \int \delta\mathbf E_i : \mathcal C : \delta\mathbf E_j
   //          + \nabla_0\mathbf N_i : \nabla_0\mathbf N_j\,\mathbf S \; dV,
   // @f]
-  // and since $\partial\mathbf v/\partial\mathbf u = c_v$, the velocity
-  // coefficient of the stepper, the viscous forces add $\zeta c_v K_{ij}$.
-  // The derivative of the viscous stress with respect to $\mathbf u$ at
-  // fixed velocity (it contains the third derivative of $\Psi$) is left
-  // out: it is of the relative size $\zeta|\dot{\mathbf F}|$, a few percent
-  // for the actuator, so Newton's method still converges, only not
-  // quadratically to the last digit, and the matrix stays symmetric, so
-  // that CG can be used. The residual itself is exact.
+  // the first term of $K_{ij}$ being the material part, which times
+  // $\zeta$ is the damping matrix of this state (see the class
+  // documentation); it is assembled into `next_damping_matrix` alongside.
   //
   // A quadrature point with $\det\mathbf F\le 0$ has no physical meaning:
   // it is reported (on all processes), and the caller rejects the state.
@@ -44,28 +32,24 @@ namespace SoftRobot
   typename SoftRobotDynamics<dim>::AssemblyResult
   SoftRobotDynamics<dim>::assemble_internal_force(
     const TrilinosWrappers::MPI::Vector &u,
-    const TrilinosWrappers::MPI::Vector &v,
     const bool                           with_matrix,
-    const double                         velocity_coefficient,
-    TrilinosWrappers::MPI::Vector &      internal_force,
-    TrilinosWrappers::MPI::Vector *      damping_force)
+    TrilinosWrappers::MPI::Vector       &internal_force)
   {
     TimerOutput::Scope timer_section(computing_timer, "Assemble system");
 
     TrilinosWrappers::MPI::Vector u_ghosted(locally_owned_dofs,
                                             locally_relevant_dofs,
                                             mpi_communicator);
-    TrilinosWrappers::MPI::Vector v_ghosted(u_ghosted);
     u_ghosted = u;
-    v_ghosted = v;
 
+    const bool with_damping = with_matrix && has_damping;
     if (with_matrix)
       system_matrix = 0.;
+    if (with_damping)
+      next_damping_matrix = 0.;
     internal_force = 0.;
-    if (damping_force != nullptr)
-      *damping_force = 0.;
 
-    FEValues<dim> fe_values(*mapping,
+    FEValues<dim>                    fe_values(*mapping,
                             *fe,
                             *cell_quadrature,
                             update_gradients | update_JxW_values);
@@ -74,10 +58,10 @@ namespace SoftRobot
     const unsigned int               n_q_points    = cell_quadrature->size();
 
     FullMatrix<double> cell_matrix(dofs_per_cell, dofs_per_cell);
+    FullMatrix<double> cell_damping(dofs_per_cell, dofs_per_cell);
     Vector<double>     cell_force(dofs_per_cell);
-    Vector<double>     cell_damping(dofs_per_cell);
     std::vector<types::global_dof_index> dof_indices(dofs_per_cell);
-    std::vector<Tensor<2, dim>>          grad_u(n_q_points), grad_v(n_q_points);
+    std::vector<Tensor<2, dim>>          grad_u(n_q_points);
     std::vector<Tensor<2, dim>>          grad_N(dofs_per_cell);
     std::vector<SymmetricTensor<2, dim>> delta_E(dofs_per_cell);
     MaterialResponse<dim>                response;
@@ -88,21 +72,21 @@ namespace SoftRobot
         {
           fe_values.reinit(cell);
           fe_values[displacements].get_function_gradients(u_ghosted, grad_u);
-          fe_values[displacements].get_function_gradients(v_ghosted, grad_v);
-          const NeoHookeanEnergy<dim> &material = materials.at(cell->material_id());
+          const NeoHookeanEnergy<dim> &material =
+            materials.at(cell->material_id());
           const double zeta    = material_of(cell).damping_zeta;
           const double section = material_of(cell).section;
 
           cell_matrix  = 0.;
-          cell_force   = 0.;
           cell_damping = 0.;
+          cell_force   = 0.;
           for (unsigned int q = 0; q < n_q_points; ++q)
             {
               Tensor<2, dim> F = grad_u[q];
               for (unsigned int d = 0; d < dim; ++d)
                 F[d][d] += 1.;
-              const double         J = determinant(F);
-              result.min_jacobian   = std::min(result.min_jacobian, J);
+              const double J      = determinant(F);
+              result.min_jacobian = std::min(result.min_jacobian, J);
               if (!(J > 0.))
                 {
                   result.inverted_point_found = true;
@@ -112,64 +96,69 @@ namespace SoftRobot
               const double JxW = fe_values.JxW(q) * section;
               result.strain_energy += response.energy * JxW;
 
-              const Tensor<2, dim> &         F_dot = grad_v[q];
-              const SymmetricTensor<2, dim>  E_dot = symmetrize(transpose(F) * F_dot);
-              const SymmetricTensor<2, dim>  S_viscous =
-                zeta * (response.material_tangent * E_dot);
-              const Tensor<2, dim> F_dot_S = F_dot * Tensor<2, dim>(response.second_piola);
-
               for (unsigned int i = 0; i < dofs_per_cell; ++i)
                 {
                   grad_N[i]  = fe_values[displacements].gradient(i, q);
                   delta_E[i] = symmetrize(transpose(F) * grad_N[i]);
-                  const double viscous =
-                    delta_E[i] * S_viscous + zeta * scalar_product(grad_N[i], F_dot_S);
-                  cell_force(i) +=
-                    (delta_E[i] * response.second_piola + viscous) * JxW;
-                  cell_damping(i) += viscous * JxW;
+                  cell_force(i) += (delta_E[i] * response.second_piola) * JxW;
                 }
 
               if (with_matrix)
-                {
-                  const double factor = (1. + zeta * velocity_coefficient) * JxW;
-                  for (unsigned int i = 0; i < dofs_per_cell; ++i)
-                    {
-                      const SymmetricTensor<2, dim> C_dE_i =
-                        response.material_tangent * delta_E[i];
-                      const Tensor<2, dim> grad_N_i_S =
-                        grad_N[i] * Tensor<2, dim>(response.second_piola);
-                      for (unsigned int j = 0; j <= i; ++j)
+                for (unsigned int i = 0; i < dofs_per_cell; ++i)
+                  {
+                    const SymmetricTensor<2, dim> C_dE_i =
+                      response.material_tangent * delta_E[i];
+                    const Tensor<2, dim> grad_N_i_S =
+                      grad_N[i] * Tensor<2, dim>(response.second_piola);
+                    for (unsigned int j = 0; j <= i; ++j)
+                      {
+                        const double material_part =
+                          (C_dE_i * delta_E[j]) * JxW;
                         cell_matrix(i, j) +=
-                          (C_dE_i * delta_E[j] + scalar_product(grad_N_i_S, grad_N[j])) *
-                          factor;
-                    }
-                }
+                          material_part +
+                          scalar_product(grad_N_i_S, grad_N[j]) * JxW;
+                        cell_damping(i, j) += zeta * material_part;
+                      }
+                  }
             }
           if (with_matrix)
             for (unsigned int i = 0; i < dofs_per_cell; ++i)
               for (unsigned int j = i + 1; j < dofs_per_cell; ++j)
-                cell_matrix(i, j) = cell_matrix(j, i);
+                {
+                  cell_matrix(i, j)  = cell_matrix(j, i);
+                  cell_damping(i, j) = cell_damping(j, i);
+                }
 
           cell->get_dof_indices(dof_indices);
           if (with_matrix)
-            constraints.distribute_local_to_global(
-              cell_matrix, cell_force, dof_indices, system_matrix, internal_force);
+            constraints.distribute_local_to_global(cell_matrix,
+                                                   cell_force,
+                                                   dof_indices,
+                                                   system_matrix,
+                                                   internal_force);
           else
-            constraints.distribute_local_to_global(cell_force, dof_indices, internal_force);
-          if (damping_force != nullptr)
-            constraints.distribute_local_to_global(cell_damping, dof_indices, *damping_force);
+            constraints.distribute_local_to_global(cell_force,
+                                                   dof_indices,
+                                                   internal_force);
+          if (with_damping)
+            constraints.distribute_local_to_global(cell_damping,
+                                                   dof_indices,
+                                                   next_damping_matrix);
         }
 
     if (with_matrix)
       system_matrix.compress(VectorOperation::add);
+    if (with_damping)
+      next_damping_matrix.compress(VectorOperation::add);
     internal_force.compress(VectorOperation::add);
-    if (damping_force != nullptr)
-      damping_force->compress(VectorOperation::add);
 
-    result.strain_energy = Utilities::MPI::sum(result.strain_energy, mpi_communicator);
-    result.min_jacobian  = Utilities::MPI::min(result.min_jacobian, mpi_communicator);
+    result.strain_energy =
+      Utilities::MPI::sum(result.strain_energy, mpi_communicator);
+    result.min_jacobian =
+      Utilities::MPI::min(result.min_jacobian, mpi_communicator);
     result.inverted_point_found =
-      Utilities::MPI::max(result.inverted_point_found ? 1 : 0, mpi_communicator) == 1;
+      Utilities::MPI::max(result.inverted_point_found ? 1 : 0,
+                          mpi_communicator) == 1;
     return result;
   }
 
@@ -192,21 +181,23 @@ namespace SoftRobot
     if (!parameters.traction_boundary_ids.empty())
       {
         TimerOutput::Scope timer_section(computing_timer, "Assemble tractions");
-        TrilinosWrappers::MPI::Vector traction_force(locally_owned_dofs,
+        TrilinosWrappers::MPI::Vector    traction_force(locally_owned_dofs,
                                                      mpi_communicator);
-        FEFaceValues<dim> fe_face_values(*mapping,
+        FEFaceValues<dim>                fe_face_values(*mapping,
                                          *fe,
                                          *face_quadrature,
-                                         update_values | update_quadrature_points |
+                                         update_values |
+                                           update_quadrature_points |
                                            update_JxW_values);
         const FEValuesExtractors::Vector displacements(0);
         const unsigned int               dofs_per_cell = fe->n_dofs_per_cell();
         Vector<double>                   cell_force(dofs_per_cell);
         std::vector<types::global_dof_index> dof_indices(dofs_per_cell);
         traction_function.set_time(time);
-        Vector<double> value(dim);
-        const std::set<types::boundary_id> ids(parameters.traction_boundary_ids.begin(),
-                                               parameters.traction_boundary_ids.end());
+        Vector<double>                     value(dim);
+        const std::set<types::boundary_id> ids(
+          parameters.traction_boundary_ids.begin(),
+          parameters.traction_boundary_ids.end());
 
         for (const auto &cell : dof_handler.active_cell_iterators())
           if (cell->is_locally_owned())
@@ -215,17 +206,20 @@ namespace SoftRobot
                   ids.count(cell->face(face)->boundary_id()) == 1)
                 {
                   fe_face_values.reinit(cell, face);
-                  cell_force          = 0.;
+                  cell_force           = 0.;
                   const double section = material_of(cell).section;
-                  for (const unsigned int q : fe_face_values.quadrature_point_indices())
+                  for (const unsigned int q :
+                       fe_face_values.quadrature_point_indices())
                     {
-                      traction_function.vector_value(fe_face_values.quadrature_point(q), value);
+                      traction_function.vector_value(
+                        fe_face_values.quadrature_point(q), value);
                       Tensor<1, dim> t;
                       for (unsigned int d = 0; d < dim; ++d)
                         t[d] = value[d];
                       for (const unsigned int i : fe_face_values.dof_indices())
-                        cell_force(i) += fe_face_values[displacements].value(i, q) * t *
-                                         fe_face_values.JxW(q) * section;
+                        cell_force(i) +=
+                          fe_face_values[displacements].value(i, q) * t *
+                          fe_face_values.JxW(q) * section;
                     }
                   cell->get_dof_indices(dof_indices);
                   constraints.distribute_local_to_global(cell_force,
@@ -240,16 +234,12 @@ namespace SoftRobot
 
 
 
-#define SOFT_ROBOT_INSTANTIATE(dim)                                          \
-  template typename SoftRobotDynamics<dim>::AssemblyResult                   \
-  SoftRobotDynamics<dim>::assemble_internal_force(                           \
-    const TrilinosWrappers::MPI::Vector &,                                   \
-    const TrilinosWrappers::MPI::Vector &,                                   \
-    const bool,                                                              \
-    const double,                                                            \
-    TrilinosWrappers::MPI::Vector &,                                         \
-    TrilinosWrappers::MPI::Vector *);                                        \
-  template void SoftRobotDynamics<dim>::assemble_external_force(             \
+#define SOFT_ROBOT_INSTANTIATE(dim)                                           \
+  template typename SoftRobotDynamics<dim>::AssemblyResult SoftRobotDynamics< \
+    dim>::assemble_internal_force(const TrilinosWrappers::MPI::Vector &,      \
+                                  const bool,                                 \
+                                  TrilinosWrappers::MPI::Vector &);           \
+  template void SoftRobotDynamics<dim>::assemble_external_force(              \
     const double, const double, TrilinosWrappers::MPI::Vector &) const;
 
   SOFT_ROBOT_INSTANTIATE(1)

@@ -6,14 +6,10 @@
 // with the motion of the tip region and the energy balance, the input of
 // the spectral analysis.
 
-#include <deal.II/base/quadrature_lib.h>
-
-#include <deal.II/fe/fe_values.h>
-
-#include <deal.II/numerics/data_out.h>
-
 #include <core/soft_robot_dynamics.h>
-
+#include <deal.II/base/quadrature_lib.h>
+#include <deal.II/fe/fe_values.h>
+#include <deal.II/numerics/data_out.h>
 #include <iomanip>
 
 namespace SoftRobot
@@ -29,7 +25,9 @@ namespace SoftRobot
   std::pair<Tensor<1, dim>, Tensor<1, dim>>
   SoftRobotDynamics<dim>::tip_motion() const
   {
-    TrilinosWrappers::MPI::Vector u(locally_owned_dofs, locally_relevant_dofs, mpi_communicator);
+    TrilinosWrappers::MPI::Vector u(locally_owned_dofs,
+                                    locally_relevant_dofs,
+                                    mpi_communicator);
     TrilinosWrappers::MPI::Vector v(u);
     u = current.u;
     v = current.v;
@@ -41,20 +39,25 @@ namespace SoftRobot
 
     if (parameters.tip_region_type == "boundary")
       {
-        FEFaceValues<dim> fe_face_values(*mapping, *fe, *face_quadrature,
+        FEFaceValues<dim>           fe_face_values(*mapping,
+                                         *fe,
+                                         *face_quadrature,
                                          update_values | update_JxW_values);
         std::vector<Tensor<1, dim>> u_q(face_quadrature->size()), v_q(u_q);
         for (const auto &cell : dof_handler.active_cell_iterators())
           if (cell->is_locally_owned())
             for (const auto face : cell->face_indices())
-              if (cell->face(face)->at_boundary() && cell->face(face)->boundary_id() == id)
+              if (cell->face(face)->at_boundary() &&
+                  cell->face(face)->boundary_id() == id)
                 {
                   fe_face_values.reinit(cell, face);
                   fe_face_values[displacements].get_function_values(u, u_q);
                   fe_face_values[displacements].get_function_values(v, v_q);
-                  for (const unsigned int q : fe_face_values.quadrature_point_indices())
+                  for (const unsigned int q :
+                       fe_face_values.quadrature_point_indices())
                     {
-                      const double w = fe_face_values.JxW(q) * material_of(cell).section;
+                      const double w =
+                        fe_face_values.JxW(q) * material_of(cell).section;
                       sum_u += w * u_q[q];
                       sum_v += w * v_q[q];
                       weight += w;
@@ -63,7 +66,9 @@ namespace SoftRobot
       }
     else
       {
-        FEValues<dim> fe_values(*mapping, *fe, *cell_quadrature,
+        FEValues<dim>               fe_values(*mapping,
+                                *fe,
+                                *cell_quadrature,
                                 update_values | update_JxW_values);
         std::vector<Tensor<1, dim>> u_q(cell_quadrature->size()), v_q(u_q);
         for (const auto &cell : dof_handler.active_cell_iterators())
@@ -105,7 +110,8 @@ namespace SoftRobot
     const std::string name =
       parameters.output_directory + "/" + parameters.trajectory_file;
     trajectory.open(name);
-    AssertThrow(trajectory, ExcMessage("Cannot write the trajectory file '" + name + "'."));
+    AssertThrow(trajectory,
+                ExcMessage("Cannot write the trajectory file '" + name + "'."));
     trajectory << "# SoftRobotDynamics<" << dim << "> tip trajectory of "
                << parameters.tip_region_type << ' ' << parameters.tip_region_id
                << ", from " << parameters.source_name << "\n"
@@ -158,16 +164,19 @@ namespace SoftRobot
   {
     TimerOutput::Scope timer_section(computing_timer, "Output");
 
-    TrilinosWrappers::MPI::Vector u(locally_owned_dofs, locally_relevant_dofs, mpi_communicator);
+    TrilinosWrappers::MPI::Vector u(locally_owned_dofs,
+                                    locally_relevant_dofs,
+                                    mpi_communicator);
     TrilinosWrappers::MPI::Vector v(u), a(u);
     u = current.u;
     v = current.v;
     a = current.a;
 
     const unsigned int n_cells = triangulation.n_active_cells();
-    Vector<float>      volume_ratio(n_cells), von_mises(n_cells), material(n_cells),
+    Vector<float> volume_ratio(n_cells), von_mises(n_cells), material(n_cells),
       rank(n_cells);
-    std::vector<Vector<float>> stress(dim * (dim + 1) / 2, Vector<float>(n_cells));
+    std::vector<Vector<float>> stress(dim * (dim + 1) / 2,
+                                      Vector<float>(n_cells));
 
     FEValues<dim> fe_values(*mapping, *fe, *cell_quadrature, update_gradients);
     const FEValuesExtractors::Vector displacements(0);
@@ -192,7 +201,7 @@ namespace SoftRobot
             }
           mean_sigma /= grad_u.size();
           const unsigned int index = cell->active_cell_index();
-          volume_ratio[index] = mean_J / grad_u.size();
+          volume_ratio[index]      = mean_J / grad_u.size();
           // The von Mises stress of the 3D stress state the model stands
           // for: out-of-plane components vanish in the reduced models.
           SymmetricTensor<2, 3> sigma_3d;
@@ -211,23 +220,35 @@ namespace SoftRobot
     DataOut<dim> data_out;
     data_out.attach_dof_handler(dof_handler);
     const std::vector<DataComponentInterpretation::DataComponentInterpretation>
-      vector_field(dim, DataComponentInterpretation::component_is_part_of_vector);
-    data_out.add_data_vector(u, std::vector<std::string>(dim, "displacement"),
-                             DataOut<dim>::type_dof_data, vector_field);
-    data_out.add_data_vector(v, std::vector<std::string>(dim, "velocity"),
-                             DataOut<dim>::type_dof_data, vector_field);
-    data_out.add_data_vector(a, std::vector<std::string>(dim, "acceleration"),
-                             DataOut<dim>::type_dof_data, vector_field);
+      vector_field(dim,
+                   DataComponentInterpretation::component_is_part_of_vector);
+    data_out.add_data_vector(u,
+                             std::vector<std::string>(dim, "displacement"),
+                             DataOut<dim>::type_dof_data,
+                             vector_field);
+    data_out.add_data_vector(v,
+                             std::vector<std::string>(dim, "velocity"),
+                             DataOut<dim>::type_dof_data,
+                             vector_field);
+    data_out.add_data_vector(a,
+                             std::vector<std::string>(dim, "acceleration"),
+                             DataOut<dim>::type_dof_data,
+                             vector_field);
     data_out.add_data_vector(volume_ratio, "J", DataOut<dim>::type_cell_data);
-    data_out.add_data_vector(von_mises, "von_Mises_stress", DataOut<dim>::type_cell_data);
-    data_out.add_data_vector(material, "material_id", DataOut<dim>::type_cell_data);
+    data_out.add_data_vector(von_mises,
+                             "von_Mises_stress",
+                             DataOut<dim>::type_cell_data);
+    data_out.add_data_vector(material,
+                             "material_id",
+                             DataOut<dim>::type_cell_data);
     data_out.add_data_vector(rank, "mpi_rank", DataOut<dim>::type_cell_data);
-    const char *axis = "xyz";
-    unsigned int c   = 0;
+    const char  *axis = "xyz";
+    unsigned int c    = 0;
     for (unsigned int i = 0; i < dim; ++i)
       for (unsigned int j = i; j < dim; ++j)
         data_out.add_data_vector(stress[c++],
-                                 std::string("cauchy_stress_") + axis[i] + axis[j],
+                                 std::string("cauchy_stress_") + axis[i] +
+                                   axis[j],
                                  DataOut<dim>::type_cell_data);
 
     DataOutBase::VtkFlags flags;
@@ -236,8 +257,12 @@ namespace SoftRobot
     data_out.set_flags(flags);
     data_out.build_patches(*mapping, simplex_mesh ? 1 : parameters.degree);
 
-    const std::string name = data_out.write_vtu_with_pvtu_record(
-      parameters.output_directory + "/", "solution", output_index, mpi_communicator, 5);
+    const std::string name =
+      data_out.write_vtu_with_pvtu_record(parameters.output_directory + "/",
+                                          "solution",
+                                          output_index,
+                                          mpi_communicator,
+                                          5);
     pvd_records.emplace_back(current.time, name);
     if (Utilities::MPI::this_mpi_process(mpi_communicator) == 0)
       {
@@ -248,11 +273,11 @@ namespace SoftRobot
 
 
 
-#define SOFT_ROBOT_INSTANTIATE(dim)                                            \
-  template std::pair<Tensor<1, dim>, Tensor<1, dim>>                           \
-  SoftRobotDynamics<dim>::tip_motion() const;                                  \
-  template void SoftRobotDynamics<dim>::open_trajectory_file();                \
-  template void SoftRobotDynamics<dim>::write_trajectory_line();               \
+#define SOFT_ROBOT_INSTANTIATE(dim)                              \
+  template std::pair<Tensor<1, dim>, Tensor<1, dim>>             \
+                SoftRobotDynamics<dim>::tip_motion() const;      \
+  template void SoftRobotDynamics<dim>::open_trajectory_file();  \
+  template void SoftRobotDynamics<dim>::write_trajectory_line(); \
   template void SoftRobotDynamics<dim>::output_results(const unsigned int);
 
   SOFT_ROBOT_INSTANTIATE(1)

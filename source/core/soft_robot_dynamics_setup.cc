@@ -4,30 +4,24 @@
 // time loop: the constructor, make_grid(), setup_system() and the mass
 // matrix, and run(), which strings all phases together.
 
+#include <core/soft_robot_dynamics.h>
 #include <deal.II/base/function_parser.h>
 #include <deal.II/base/quadrature_lib.h>
-
 #include <deal.II/dofs/dof_tools.h>
-
 #include <deal.II/fe/fe_q.h>
 #include <deal.II/fe/fe_simplex_p.h>
 #include <deal.II/fe/fe_values.h>
 #include <deal.II/fe/mapping_fe.h>
 #include <deal.II/fe/mapping_q.h>
-
 #include <deal.II/grid/grid_generator.h>
 #include <deal.II/grid/grid_in.h>
 #include <deal.II/grid/grid_tools.h>
-
 #include <deal.II/lac/dynamic_sparsity_pattern.h>
 #include <deal.II/lac/sparsity_tools.h>
-
 #include <deal.II/numerics/vector_tools.h>
-
-#include <core/soft_robot_dynamics.h>
-
 #include <filesystem>
 #include <set>
+#include <sstream>
 
 namespace SoftRobot
 {
@@ -38,8 +32,8 @@ namespace SoftRobot
     HHTStepper
     make_stepper(const Parameters::TimeIntegration &p)
     {
-      return (p.beta < 0) ? HHTStepper(p.alpha) :
-                            HHTStepper(p.alpha, p.beta, p.gamma);
+      return (p.beta < 0) ? HHTStepper(p.alpha)
+                          : HHTStepper(p.alpha, p.beta, p.gamma);
     }
 
     // The names of the coordinate variables of the expressions.
@@ -60,7 +54,8 @@ namespace SoftRobot
           const auto pair = Utilities::split_string_list(entry, '=');
           AssertThrow(pair.size() == 2,
                       ExcMessage("Loads and constraints/Function constants: "
-                                 "expected 'name=value', got '" + entry + "'."));
+                                 "expected 'name=value', got '" +
+                                 entry + "'."));
           constants[pair[0]] = Utilities::string_to_double(pair[1]);
         }
       return constants;
@@ -75,9 +70,9 @@ namespace SoftRobot
   template <int dim>
   void
   initialize_vector_function(FunctionParser<dim> &function,
-                             const std::string &  expression,
-                             const std::string &  constants,
-                             const std::string &  entry_name)
+                             const std::string   &expression,
+                             const std::string   &constants,
+                             const std::string   &entry_name)
   {
     std::string text = expression;
     if (text.empty())
@@ -100,11 +95,13 @@ namespace SoftRobot
                             parse_constants(constants),
                             /*time_dependent=*/true);
       }
-    catch (std::exception &error)
+    catch (ExceptionBase &error)
       {
+        std::ostringstream reason;
+        error.print_info(reason);
         AssertThrow(false,
                     ExcMessage(entry_name + ": cannot parse '" + expression +
-                               "': " + error.what()));
+                               "': " + reason.str()));
       }
   }
 
@@ -113,7 +110,8 @@ namespace SoftRobot
   // @sect4{SoftRobotDynamics::SoftRobotDynamics}
   //
   // The triangulation is a parallel::shared::Triangulation: every process
-  // holds the whole (small) mesh, and the cells are partitioned with METIS.
+  // holds the whole (small) mesh, and deal.II partitions the cells (with
+  // METIS in Debian's build).
   // Unlike the p4est-based distributed triangulation it supports 1D meshes
   // and tetrahedral meshes from gmsh, which the actuator needs.
   template <int dim>
@@ -131,6 +129,8 @@ namespace SoftRobot
     , dof_handler(triangulation)
     , stepper(make_stepper(parameters))
     , traction_function(dim)
+    , initial_displacement(dim)
+    , initial_velocity(dim)
     , time_step(parameters.time_step)
   {
     AssertThrow(parameters.dimension == dim,
@@ -138,10 +138,20 @@ namespace SoftRobot
                            std::to_string(parameters.dimension) +
                            ", but this is SoftRobotDynamics<" +
                            std::to_string(dim) + ">."));
+    // All expressions are parsed here, before anything is computed or
+    // written, so that a mistake in any of them stops the program at once.
     initialize_vector_function(traction_function,
                                parameters.traction_expression,
                                parameters.constants,
                                "Loads and constraints/Traction");
+    initialize_vector_function(initial_displacement,
+                               parameters.displacement_expression,
+                               parameters.constants,
+                               "Initial conditions/Displacement");
+    initialize_vector_function(initial_velocity,
+                               parameters.velocity_expression,
+                               parameters.constants,
+                               "Initial conditions/Velocity");
     for (unsigned int d = 0; d < dim; ++d)
       gravity[d] = parameters.gravity[d];
     for (const auto &[id, material] : parameters.by_id)
@@ -181,17 +191,21 @@ namespace SoftRobot
         try
           {
             GridGenerator::generate_from_name_and_arguments(
-              generated, parameters.generator_name, parameters.generator_arguments);
+              generated,
+              parameters.generator_name,
+              parameters.generator_arguments);
           }
-        catch (std::exception &error)
+        catch (ExceptionBase &error)
           {
+            std::ostringstream reason;
+            error.print_info(reason);
             AssertThrow(false,
                         ExcMessage("In '" + parameters.source_name +
                                    "': Geometry/Generator '" +
                                    parameters.generator_name +
-                                   "' with arguments '" +
-                                   parameters.generator_arguments +
-                                   "' failed: " + error.what()));
+                                   "' does not accept the arguments '" +
+                                   parameters.generator_arguments + "' in " +
+                                   std::to_string(dim) + "D: " + reason.str()));
           }
         if (parameters.convert_to_simplices && dim > 1)
           GridGenerator::convert_hypercube_to_simplex_mesh(generated, serial);
@@ -247,11 +261,14 @@ namespace SoftRobot
                              std::to_string(id) + "' with a Name."));
     std::vector<std::pair<unsigned int, std::string>> named_boundaries;
     for (const auto &entry : parameters.fixed_components)
-      named_boundaries.emplace_back(entry.first, "Loads and constraints/Fixed components");
+      named_boundaries.emplace_back(entry.first,
+                                    "Loads and constraints/Fixed components");
     for (const unsigned int id : parameters.traction_boundary_ids)
-      named_boundaries.emplace_back(id, "Loads and constraints/Traction boundary ids");
+      named_boundaries.emplace_back(
+        id, "Loads and constraints/Traction boundary ids");
     if (parameters.tip_region_type == "boundary")
-      named_boundaries.emplace_back(parameters.tip_region_id, "Output/Tip region");
+      named_boundaries.emplace_back(parameters.tip_region_id,
+                                    "Output/Tip region");
     else
       AssertThrow(mesh_materials.count(parameters.tip_region_id) == 1,
                   ExcMessage("In '" + parameters.source_name +
@@ -275,7 +292,8 @@ namespace SoftRobot
     const unsigned int n_q =
       parameters.quadrature_points > 0 ? parameters.quadrature_points : p + 1;
     simplex_mesh = (dim > 1) && triangulation.all_reference_cells_are_simplex();
-    AssertThrow(simplex_mesh || triangulation.all_reference_cells_are_hyper_cube(),
+    AssertThrow(simplex_mesh ||
+                  triangulation.all_reference_cells_are_hyper_cube(),
                 ExcMessage("Meshes that mix cell shapes are not supported."));
     if (simplex_mesh)
       {
@@ -325,7 +343,8 @@ namespace SoftRobot
         VectorTools::interpolate_boundary_values(*mapping,
                                                  dof_handler,
                                                  boundary_id,
-                                                 Functions::ZeroFunction<dim>(dim),
+                                                 Functions::ZeroFunction<dim>(
+                                                   dim),
                                                  constraints,
                                                  ComponentMask(mask));
       }
@@ -337,13 +356,29 @@ namespace SoftRobot
                                                locally_owned_dofs,
                                                mpi_communicator,
                                                locally_relevant_dofs);
-    system_matrix.reinit(locally_owned_dofs, locally_owned_dofs, dsp, mpi_communicator);
+    system_matrix.reinit(locally_owned_dofs,
+                         locally_owned_dofs,
+                         dsp,
+                         mpi_communicator);
     mass.reinit(locally_owned_dofs, locally_owned_dofs, dsp, mpi_communicator);
+    has_damping = false;
+    for (const auto &entry : parameters.by_id)
+      has_damping = has_damping || (entry.second.damping_zeta > 0.);
+    if (has_damping)
+      for (TrilinosWrappers::SparseMatrix *matrix :
+           {&damping_matrix, &next_damping_matrix})
+        matrix->reinit(locally_owned_dofs,
+                       locally_owned_dofs,
+                       dsp,
+                       mpi_communicator);
 
     for (State *state : {&current, &previous})
-      for (TrilinosWrappers::MPI::Vector *vector :
-           {&state->u, &state->v, &state->a, &state->internal_force,
-            &state->external_force, &state->damping_force})
+      for (TrilinosWrappers::MPI::Vector *vector : {&state->u,
+                                                    &state->v,
+                                                    &state->a,
+                                                    &state->internal_force,
+                                                    &state->external_force,
+                                                    &state->damping_force})
         vector->reinit(locally_owned_dofs, mpi_communicator);
 
     // Densities: given, or from the mass of the region. The meshed volume
@@ -351,7 +386,10 @@ namespace SoftRobot
     // the body; dividing by the model fraction gives the whole body's.
     std::map<types::material_id, double> region_volume;
     {
-      FEValues<dim> fe_values(*mapping, *fe, *cell_quadrature, update_JxW_values);
+      FEValues<dim> fe_values(*mapping,
+                              *fe,
+                              *cell_quadrature,
+                              update_JxW_values);
       for (const auto &cell : dof_handler.active_cell_iterators())
         if (cell->is_locally_owned())
           {
@@ -362,15 +400,17 @@ namespace SoftRobot
     }
     for (const auto &[id, material] : parameters.by_id)
       {
-        const double volume = Utilities::MPI::sum(region_volume[id], mpi_communicator);
+        const double volume =
+          Utilities::MPI::sum(region_volume[id], mpi_communicator);
         if (material.mass > 0)
           {
             AssertThrow(volume > 0,
-                        ExcMessage("In '" + parameters.source_name + "': Material " +
-                                   std::to_string(id) + "/Mass is given, but no "
+                        ExcMessage("In '" + parameters.source_name +
+                                   "': Material " + std::to_string(id) +
+                                   "/Mass is given, but no "
                                    "cell of the mesh has this material id."));
-            densities[id] =
-              material.mass * parameters.model_fraction / (volume * material.section);
+            densities[id] = material.mass * parameters.model_fraction /
+                            (volume * material.section);
           }
         else
           densities[id] = material.density;
@@ -379,7 +419,8 @@ namespace SoftRobot
                 << "): mu = " << material.shear_modulus
                 << " kPa, density = " << densities[id]
                 << " kg/mm^3, mass in the model = "
-                << densities[id] * volume * material.section << " kg" << std::endl;
+                << densities[id] * volume * material.section << " kg"
+                << std::endl;
       }
 
     // The rigid-body modes (translations and rotations) at the support
@@ -387,10 +428,13 @@ namespace SoftRobot
     // them, which keeps the number of CG iterations of elasticity low.
     {
       std::map<types::global_dof_index, Point<dim>> support_points;
-      DoFTools::map_dofs_to_support_points(*mapping, dof_handler, support_points);
+      DoFTools::map_dofs_to_support_points(*mapping,
+                                           dof_handler,
+                                           support_points);
       const unsigned int n_rotations = dim * (dim - 1) / 2;
-      rigid_body_modes.assign(dim + n_rotations,
-                              std::vector<double>(locally_owned_dofs.n_elements(), 0.));
+      rigid_body_modes.assign(
+        dim + n_rotations,
+        std::vector<double>(locally_owned_dofs.n_elements(), 0.));
       std::vector<types::global_dof_index> dof_indices(fe->n_dofs_per_cell());
       for (const auto &cell : dof_handler.active_cell_iterators())
         if (cell->is_locally_owned())
@@ -402,16 +446,16 @@ namespace SoftRobot
                   const unsigned int local =
                     locally_owned_dofs.index_within_set(dof_indices[i]);
                   const unsigned int c = fe->system_to_component_index(i).first;
-                  const Point<dim> &  x = support_points[dof_indices[i]];
+                  const Point<dim>  &x = support_points[dof_indices[i]];
                   rigid_body_modes[c][local] = 1.;
                   if constexpr (dim == 2)
                     rigid_body_modes[2][local] = (c == 0) ? -x[1] : x[0];
                   if constexpr (dim == 3)
                     {
                       // Rotations about x, y and z: (0,-z,y), (z,0,-x), (-y,x,0).
-                      const double rx[3] = {0., -x[2], x[1]};
-                      const double ry[3] = {x[2], 0., -x[0]};
-                      const double rz[3] = {-x[1], x[0], 0.};
+                      const double rx[3]         = {0., -x[2], x[1]};
+                      const double ry[3]         = {x[2], 0., -x[0]};
+                      const double rz[3]         = {-x[1], x[0], 0.};
                       rigid_body_modes[3][local] = rx[c];
                       rigid_body_modes[4][local] = ry[c];
                       rigid_body_modes[5][local] = rz[c];
@@ -440,7 +484,7 @@ namespace SoftRobot
   void
   SoftRobotDynamics<dim>::assemble_mass_matrix()
   {
-    FEValues<dim> fe_values(*mapping,
+    FEValues<dim>      fe_values(*mapping,
                             *fe,
                             *cell_quadrature,
                             update_values | update_JxW_values);
@@ -500,14 +544,15 @@ namespace SoftRobot
   {
     Timer wall_clock;
     pcout << "SoftRobotDynamics<" << dim << ">: " << parameters.source_name
-          << "\n" << stepper.description() << std::endl;
+          << "\n"
+          << stepper.description() << std::endl;
     if (!stepper.is_unconditionally_stable())
       pcout << "Warning: these HHT parameters are not unconditionally "
                "stable; the spectral radius exceeds one for some omega*dt."
             << std::endl;
-    else if (!stepper.is_standard_family())
-      pcout << "Note: beta and gamma are not the standard functions of "
-               "alpha; the scheme is then only first-order accurate."
+    else if (std::abs(stepper.gamma() - (0.5 - stepper.alpha())) > 1e-12)
+      pcout << "Note: gamma differs from 1/2 - alpha; the scheme is then "
+               "only first-order accurate."
             << std::endl;
 
     make_grid();
@@ -556,21 +601,22 @@ namespace SoftRobot
             const double elapsed = wall_clock.wall_time();
             const double left =
               elapsed / current.time * (total_time - current.time);
-            pcout << "step " << std::setw(5) << step_number << "  t = " << std::fixed
-                  << std::setprecision(4) << current.time
-                  << " s  dt = " << std::scientific << std::setprecision(2)
-                  << time_step << "  Newton " << last_newton_iterations
-                  << " (|r| = " << last_residual << ")  elapsed "
-                  << std::fixed << std::setprecision(1) << elapsed
-                  << " s  left ~" << left << " s" << std::defaultfloat
-                  << std::setprecision(6) << std::endl;
+            pcout << "step " << std::setw(5) << step_number
+                  << "  t = " << std::fixed << std::setprecision(4)
+                  << current.time << " s  dt = " << std::scientific
+                  << std::setprecision(2) << time_step << "  Newton "
+                  << last_newton_iterations << " (|r| = " << last_residual
+                  << ")  elapsed " << std::fixed << std::setprecision(1)
+                  << elapsed << " s  left ~" << left << " s"
+                  << std::defaultfloat << std::setprecision(6) << std::endl;
           }
       }
 
-    pcout << "Finished " << step_number << " steps in " << wall_clock.wall_time()
-          << " s: " << total_newton_iterations << " Newton iterations, "
-          << total_linear_iterations << " linear iterations, "
-          << total_cutbacks << " time-step cutbacks." << std::endl;
+    pcout << "Finished " << step_number << " steps in "
+          << wall_clock.wall_time() << " s: " << total_newton_iterations
+          << " Newton iterations, " << total_linear_iterations
+          << " linear iterations, " << total_cutbacks << " time-step cutbacks."
+          << std::endl;
     computing_timer.print_summary();
   }
 

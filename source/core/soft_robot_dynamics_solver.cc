@@ -4,22 +4,17 @@
 // initial state (including a static equilibrium) and the time step with
 // its automatic cut back.
 
+#include <Epetra_MultiVector.h>
+#include <Teuchos_ParameterList.hpp>
+#include <cmath>
+#include <core/soft_robot_dynamics.h>
 #include <deal.II/base/function_parser.h>
-
 #include <deal.II/lac/solver_cg.h>
 #include <deal.II/lac/solver_control.h>
 #include <deal.II/lac/solver_gmres.h>
 #include <deal.II/lac/trilinos_precondition.h>
 #include <deal.II/lac/trilinos_solver.h>
-
 #include <deal.II/numerics/vector_tools.h>
-
-#include <core/soft_robot_dynamics.h>
-
-#include <Epetra_MultiVector.h>
-#include <Teuchos_ParameterList.hpp>
-
-#include <cmath>
 #include <sstream>
 
 namespace SoftRobot
@@ -30,43 +25,51 @@ namespace SoftRobot
   // velocity and acceleration follow from Newmark's relations, and
   // @f[
   //   \mathbf r = \mathbf M\mathbf a_{n+1}
-  //   + (1+\alpha)\left[\mathbf f_\text{int}(\mathbf u_{n+1},\mathbf v_{n+1})
-  //     - \mathbf f_\text{ext}(t_{n+1})\right]
-  //   - \alpha\left[\mathbf f_\text{int}(\mathbf u_n,\mathbf v_n)
-  //     - \mathbf f_\text{ext}(t_n)\right].
+  //   + (1+\alpha)\left[\mathbf f_\text{int}(\mathbf u_{n+1})
+  //     + \mathbf C\mathbf v_{n+1} - \mathbf f_\text{ext}(t_{n+1})\right]
+  //   - \alpha\left[\mathbf f_\text{int}(\mathbf u_n) + \mathbf C\mathbf v_n
+  //     - \mathbf f_\text{ext}(t_n)\right],
   // @f]
-  // Its derivative, the effective tangent, is
-  // $\mathbf M/(\beta\Delta t^2) + (1+\alpha)(\mathbf K + c_v\zeta\mathbf K)$.
-  // The trial's velocity, acceleration and forces are left in `current`.
+  // with the damping matrix $\mathbf C$ of the step. Its derivative, the
+  // effective tangent, is $\mathbf M/(\beta\Delta t^2) + (1+\alpha)(\mathbf K
+  // + c_v\mathbf C)$ with $c_v = \gamma/(\beta\Delta t)$. The trial's
+  // velocity, acceleration and forces are left in `current`.
   template <int dim>
   typename SoftRobotDynamics<dim>::AssemblyResult
   SoftRobotDynamics<dim>::evaluate_residual(
     const TrilinosWrappers::MPI::Vector &u_trial,
     const double                         dt,
     const bool                           with_matrix,
-    TrilinosWrappers::MPI::Vector &      residual)
+    TrilinosWrappers::MPI::Vector       &residual)
   {
     stepper.update_kinematics(
       u_trial, previous.u, previous.v, previous.a, dt, current.v, current.a);
     AssemblyResult assembly =
-      assemble_internal_force(u_trial,
-                              current.v,
-                              with_matrix,
-                              stepper.velocity_coefficient(dt),
-                              current.internal_force,
-                              &current.damping_force);
+      assemble_internal_force(u_trial, with_matrix, current.internal_force);
+    if (has_damping)
+      damping_matrix.vmult(current.damping_force, current.v);
+    else
+      current.damping_force = 0.;
 
     const double w = stepper.new_force_weight();
     mass.vmult(residual, current.a);
     assembly.force_scale =
       std::max(residual.l2_norm(), current.internal_force.l2_norm());
-    residual.add(w, current.internal_force, -w, current.external_force);
-    residual.add(1. - w, previous.internal_force, w - 1., previous.external_force);
+    residual.add(w, current.internal_force, w, current.damping_force);
+    residual.add(-w, current.external_force);
+    residual.add(1. - w,
+                 previous.internal_force,
+                 1. - w,
+                 previous.damping_force);
+    residual.add(w - 1., previous.external_force);
     constraints.set_zero(residual);
 
     if (with_matrix)
       {
         system_matrix *= w;
+        if (has_damping)
+          system_matrix.add(w * stepper.velocity_coefficient(dt),
+                            damping_matrix);
         system_matrix.add(stepper.acceleration_coefficient(dt), mass);
       }
     return assembly;
@@ -77,7 +80,11 @@ namespace SoftRobot
   // @sect4{SoftRobotDynamics::newton_solve}
   //
   // Newton's method with a backtracking line search, shared by the time
-  // steps and the static equilibrium. `evaluate` computes the residual and
+  // steps and the static equilibrium. The line search accepts a step that
+  // lowers the residual norm or, in static problems, the total potential
+  // energy: equilibrium is its minimum, and the residual norm alone is a
+  // poor guide when a slender body rotates far; near the solution, where
+  // energy differences drown in round-off, the residual decides. `evaluate` computes the residual and
   // tangent at a trial displacement. The iteration has converged when the
   // residual is below the absolute tolerance, or below the relative
   // tolerance times a force scale: the largest of the external forces, the
@@ -92,20 +99,23 @@ namespace SoftRobot
   template <int dim>
   typename SoftRobotDynamics<dim>::AssemblyResult
   SoftRobotDynamics<dim>::newton_solve(TrilinosWrappers::MPI::Vector &u,
-                                       const ResidualEvaluator &      evaluate,
-                                       const double                   force_scale,
-                                       unsigned int &                 iterations)
+                                       const ResidualEvaluator       &evaluate,
+                                       const double  force_scale,
+                                       unsigned int &iterations)
   {
-    TrilinosWrappers::MPI::Vector residual(locally_owned_dofs, mpi_communicator);
+    TrilinosWrappers::MPI::Vector residual(locally_owned_dofs,
+                                           mpi_communicator);
     TrilinosWrappers::MPI::Vector trial_residual(residual), update(residual),
       trial(residual);
 
     AssemblyResult assembly = evaluate(u, residual);
     if (assembly.inverted_point_found)
-      throw StepFailure("the predicted state has an inverted element (det F = " +
-                        std::to_string(assembly.min_jacobian) + ")");
+      throw StepFailure(
+        "the predicted state has an inverted element (det F = " +
+        std::to_string(assembly.min_jacobian) + ")");
     double norm      = residual.l2_norm();
     double reference = std::max({force_scale, norm, assembly.force_scale});
+    double potential_energy = assembly.potential_energy;
 
     for (iterations = 0;; ++iterations)
       {
@@ -124,40 +134,48 @@ namespace SoftRobot
           }
 
         residual *= -1.;
-        total_linear_iterations += solve_linear_system(system_matrix, residual, update);
+        const unsigned int linear_iterations =
+          solve_linear_system(system_matrix, residual, update);
+        total_linear_iterations += linear_iterations;
         if (update.linfty_norm() <= 1e-14 * u.linfty_norm())
           break;
 
         // Backtracking: the full step is taken if it lowers the residual;
         // otherwise it is halved. Without line search only a state that
         // is physically valid and finite is required.
-        double step_length = 1.;
-        bool   accepted    = false;
-        bool   trial_valid = false;
-        double trial_norm  = 0.;
+        double             step_length = 1.;
+        bool               accepted    = false;
+        bool               trial_valid = false;
+        double             trial_norm  = 0.;
         const unsigned int max_halvings =
           parameters.line_search ? parameters.max_line_search_steps : 0;
         for (unsigned int halving = 0; halving <= max_halvings; ++halving)
           {
             trial = u;
             trial.add(step_length, update);
-            assembly    = evaluate(trial, trial_residual);
-            trial_norm  = trial_residual.l2_norm();
-            trial_valid = !assembly.inverted_point_found && std::isfinite(trial_norm);
-            if (trial_valid && (!parameters.line_search || trial_norm < norm))
+            assembly   = evaluate(trial, trial_residual);
+            trial_norm = trial_residual.l2_norm();
+            trial_valid =
+              !assembly.inverted_point_found && std::isfinite(trial_norm);
+            const bool descent = trial_norm < norm ||
+                                 (std::isfinite(assembly.potential_energy) &&
+                                  assembly.potential_energy < potential_energy);
+            if (trial_valid && (!parameters.line_search || descent))
               {
-                accepted = true;
-                u        = trial;
-                residual = trial_residual;
-                norm     = trial_norm;
+                accepted         = true;
+                u                = trial;
+                residual         = trial_residual;
+                norm             = trial_norm;
+                potential_energy = assembly.potential_energy;
                 break;
               }
             step_length *= 0.5;
           }
-        // Stagnation at round-off: no step lowers the residual, but it is
-        // already six orders of magnitude below the forces that balance in
-        // it, where the residual is round-off rather than an equilibrium
-        // error. The last trial state is as good as any and is accepted.
+        // Stagnation: no step lowers the residual, but it is already six
+        // orders of magnitude below the forces that balance in it. This
+        // happens when the tolerance asks for more digits than the
+        // assembly's round-off leaves (the relative tolerance times the
+        // force scale is then below it); the last trial state is accepted.
         if (!accepted && trial_valid && norm <= 1e-6 * reference)
           {
             u        = trial;
@@ -165,9 +183,15 @@ namespace SoftRobot
             norm     = trial_norm;
             break;
           }
+        if (parameters.verbose)
+          pcout << "    Newton " << iterations << ": |r| = " << norm
+                << " (scale " << reference << "), " << linear_iterations
+                << " linear iterations, step length " << step_length
+                << std::endl;
         if (!accepted)
-          throw StepFailure("the line search found no admissible step (min det F = " +
-                            std::to_string(assembly.min_jacobian) + ")");
+          throw StepFailure(
+            "the line search found no admissible step (min det F = " +
+            std::to_string(assembly.min_jacobian) + ")");
       }
     last_residual = norm;
     return assembly;
@@ -186,19 +210,21 @@ namespace SoftRobot
   // as a check.
   template <int dim>
   unsigned int
-  SoftRobotDynamics<dim>::solve_linear_system(TrilinosWrappers::SparseMatrix &     matrix,
-                                              const TrilinosWrappers::MPI::Vector &rhs,
-                                              TrilinosWrappers::MPI::Vector &solution)
+  SoftRobotDynamics<dim>::solve_linear_system(
+    TrilinosWrappers::SparseMatrix      &matrix,
+    const TrilinosWrappers::MPI::Vector &rhs,
+    TrilinosWrappers::MPI::Vector       &solution)
   {
-    solution = 0.;
+    solution                = 0.;
     unsigned int iterations = 1;
     try
       {
         if (parameters.LinearSolver::type == "Direct")
           {
             TimerOutput::Scope timer_section(computing_timer, "Linear solve");
-            SolverControl                            control(1, 0);
-            TrilinosWrappers::SolverDirect::AdditionalData data(false, "Amesos_Klu");
+            SolverControl      control(1, 0);
+            TrilinosWrappers::SolverDirect::AdditionalData data(false,
+                                                                "Amesos_Klu");
             TrilinosWrappers::SolverDirect solver(control, data);
             solver.solve(matrix, solution, rhs);
           }
@@ -216,8 +242,10 @@ namespace SoftRobot
 
               Teuchos::ParameterList              ml_parameters;
               std::unique_ptr<Epetra_MultiVector> constant_modes;
-              data.set_parameters(ml_parameters, constant_modes, matrix.trilinos_matrix());
-              const Epetra_Map &map = matrix.trilinos_matrix().DomainMap();
+              data.set_parameters(ml_parameters,
+                                  constant_modes,
+                                  matrix.trilinos_matrix());
+              const Epetra_Map  &map = matrix.trilinos_matrix().DomainMap();
               Epetra_MultiVector modes(map, rigid_body_modes.size());
               for (unsigned int k = 0; k < rigid_body_modes.size(); ++k)
                 for (unsigned int i = 0; i < rigid_body_modes[k].size(); ++i)
@@ -228,7 +256,7 @@ namespace SoftRobot
               preconditioner.initialize(matrix, ml_parameters);
             }
             TimerOutput::Scope timer_section(computing_timer, "Linear solve");
-            SolverControl control(parameters.LinearSolver::max_iterations,
+            SolverControl      control(parameters.LinearSolver::max_iterations,
                                   parameters.LinearSolver::relative_tolerance *
                                     rhs.l2_norm());
             if (parameters.LinearSolver::type == "CG")
@@ -266,8 +294,9 @@ namespace SoftRobot
   void
   SoftRobotDynamics<dim>::solve_static_equilibrium(const double time)
   {
-    TrilinosWrappers::MPI::Vector zero_velocity(locally_owned_dofs, mpi_communicator);
-    TrilinosWrappers::MPI::Vector external(zero_velocity), internal(zero_velocity);
+    TrilinosWrappers::MPI::Vector external(locally_owned_dofs,
+                                           mpi_communicator);
+    TrilinosWrappers::MPI::Vector internal(external);
 
     double       load_factor = 0.;
     double       increment   = 1. / parameters.load_steps;
@@ -277,19 +306,24 @@ namespace SoftRobot
         const double target = std::min(1., load_factor + increment);
         assemble_external_force(time, target, external);
         const ResidualEvaluator static_residual =
-          [&](const TrilinosWrappers::MPI::Vector &u, TrilinosWrappers::MPI::Vector &r) {
+          [&](const TrilinosWrappers::MPI::Vector &u,
+              TrilinosWrappers::MPI::Vector       &r) {
             AssemblyResult assembly =
-              assemble_internal_force(u, zero_velocity, true, 0., internal, nullptr);
+              assemble_internal_force(u, true, internal);
             r = internal;
             r -= external;
-            assembly.force_scale = internal.l2_norm();
+            assembly.force_scale      = internal.l2_norm();
+            assembly.potential_energy = assembly.strain_energy - external * u;
             constraints.set_zero(r);
             return assembly;
           };
         const TrilinosWrappers::MPI::Vector saved = current.u;
         try
           {
-            newton_solve(current.u, static_residual, external.l2_norm(), iterations);
+            newton_solve(current.u,
+                         static_residual,
+                         external.l2_norm(),
+                         iterations);
             total_newton_iterations += iterations;
             load_factor = target;
           }
@@ -298,8 +332,9 @@ namespace SoftRobot
             current.u = saved;
             increment *= 0.5;
             if (increment < 1e-4)
-              throw RunAborted("The static equilibrium at t = " + std::to_string(time) +
-                               " could not be found: " + failure.what());
+              throw RunAborted(
+                "The static equilibrium at t = " + std::to_string(time) +
+                " could not be found: " + failure.what());
           }
       }
     pcout << "Static equilibrium found (load factor 1, last residual "
@@ -317,8 +352,15 @@ namespace SoftRobot
   void
   SoftRobotDynamics<dim>::compute_initial_acceleration()
   {
-    const AssemblyResult assembly = assemble_internal_force(
-      current.u, current.v, false, 0., current.internal_force, &current.damping_force);
+    const AssemblyResult assembly =
+      assemble_internal_force(current.u, true, current.internal_force);
+    if (has_damping)
+      {
+        damping_matrix.copy_from(next_damping_matrix);
+        damping_matrix.vmult(current.damping_force, current.v);
+      }
+    else
+      current.damping_force = 0.;
     if (assembly.inverted_point_found)
       throw RunAborted("The initial displacement inverts elements (det F = " +
                        std::to_string(assembly.min_jacobian) + ").");
@@ -326,6 +368,7 @@ namespace SoftRobot
 
     TrilinosWrappers::MPI::Vector rhs(current.external_force);
     rhs -= current.internal_force;
+    rhs -= current.damping_force;
     constraints.set_zero(rhs);
     SolverControl control(1000, 1e-12 * std::max(rhs.l2_norm(), 1e-300));
     SolverCG<TrilinosWrappers::MPI::Vector> solver(control);
@@ -349,18 +392,15 @@ namespace SoftRobot
   SoftRobotDynamics<dim>::initialize_state()
   {
     TimerOutput::Scope timer_section(computing_timer, "Initial state");
-    FunctionParser<dim> displacement(dim), velocity(dim);
-    initialize_vector_function(displacement,
-                               parameters.displacement_expression,
-                               parameters.constants,
-                               "Initial conditions/Displacement");
-    initialize_vector_function(velocity,
-                               parameters.velocity_expression,
-                               parameters.constants,
-                               "Initial conditions/Velocity");
     current.time = 0.;
-    VectorTools::interpolate(*mapping, dof_handler, displacement, current.u);
-    VectorTools::interpolate(*mapping, dof_handler, velocity, current.v);
+    VectorTools::interpolate(*mapping,
+                             dof_handler,
+                             initial_displacement,
+                             current.u);
+    VectorTools::interpolate(*mapping,
+                             dof_handler,
+                             initial_velocity,
+                             current.v);
     constraints.set_zero(current.u);
     constraints.set_zero(current.v);
 
@@ -370,12 +410,13 @@ namespace SoftRobot
     assemble_external_force(0., 1., current.external_force);
     compute_initial_acceleration();
 
-    energy.kinetic           = 0.5 * mass.matrix_norm_square(current.v);
-    energy.gravity_potential = -(gravity_force * current.u);
+    energy.kinetic             = 0.5 * mass.matrix_norm_square(current.v);
+    energy.gravity_potential   = -(gravity_force * current.u);
     energy.traction_work       = 0.;
     energy.damping_dissipation = 0.;
-    initial_total_energy = energy.kinetic + energy.strain + energy.gravity_potential;
-    step_number          = 0;
+    initial_total_energy =
+      energy.kinetic + energy.strain + energy.gravity_potential;
+    step_number = 0;
   }
 
 
@@ -390,15 +431,17 @@ namespace SoftRobot
   {
     current.time = previous.time + dt;
     assemble_external_force(current.time, 1., current.external_force);
-    stepper.predict_displacement(previous.u, previous.v, previous.a, dt, current.u);
+    stepper.predict_displacement(
+      previous.u, previous.v, previous.a, dt, current.u);
 
     const ResidualEvaluator hht_residual =
-      [&](const TrilinosWrappers::MPI::Vector &u, TrilinosWrappers::MPI::Vector &r) {
+      [&](const TrilinosWrappers::MPI::Vector &u,
+          TrilinosWrappers::MPI::Vector       &r) {
         return evaluate_residual(u, dt, true, r);
       };
-    unsigned int iterations = 0;
-    const AssemblyResult assembly =
-      newton_solve(current.u, hht_residual, current.external_force.l2_norm(), iterations);
+    unsigned int         iterations = 0;
+    const AssemblyResult assembly   = newton_solve(
+      current.u, hht_residual, current.external_force.l2_norm(), iterations);
     last_newton_iterations = iterations;
     total_newton_iterations += iterations;
     update_energies(assembly);
@@ -452,7 +495,11 @@ namespace SoftRobot
     if (current.time >= end_time - tolerance)
       return false;
 
+    // The damping forces of the old state with this step's damping matrix,
+    // so that the damping is linear within the step.
     previous = current;
+    if (has_damping)
+      damping_matrix.vmult(previous.damping_force, previous.v);
     while (true)
       {
         const double dt = std::min(time_step, end_time - previous.time);
@@ -467,13 +514,15 @@ namespace SoftRobot
             time_step *= 0.5;
             ++total_cutbacks;
             steps_since_cutback = 0;
-            pcout << "  step at t = " << previous.time + dt << " failed (" << failure.what()
-                  << "); time step cut back to " << time_step << " s" << std::endl;
+            pcout << "  step at t = " << previous.time + dt << " failed ("
+                  << failure.what() << "); time step cut back to " << time_step
+                  << " s" << std::endl;
             if (time_step < parameters.minimum_time_step)
               {
                 std::ostringstream message;
                 message << "The time step fell below the minimum of "
-                        << parameters.minimum_time_step << " s at t = " << previous.time
+                        << parameters.minimum_time_step
+                        << " s at t = " << previous.time
                         << " s: " << failure.what()
                         << ". The output up to this time has been kept.";
                 throw RunAborted(message.str());
@@ -481,6 +530,10 @@ namespace SoftRobot
           }
       }
     ++step_number;
+    // The last Newton iteration assembled the damping matrix of the
+    // converged state: it is the next step's.
+    if (has_damping)
+      damping_matrix.copy_from(next_damping_matrix);
 
     ++steps_since_cutback;
     if (time_step < parameters.time_step &&
@@ -504,20 +557,19 @@ namespace SoftRobot
   const TrilinosWrappers::SparseMatrix &
   SoftRobotDynamics<dim>::tangent_stiffness_matrix()
   {
-    TrilinosWrappers::MPI::Vector zero(locally_owned_dofs, mpi_communicator), force(zero);
-    assemble_internal_force(current.u, zero, true, 0., force, nullptr);
+    TrilinosWrappers::MPI::Vector force(locally_owned_dofs, mpi_communicator);
+    assemble_internal_force(current.u, true, force);
     return system_matrix;
   }
 
 
 
 #define SOFT_ROBOT_INSTANTIATE(dim)                                           \
-  template typename SoftRobotDynamics<dim>::AssemblyResult                    \
-  SoftRobotDynamics<dim>::evaluate_residual(                                  \
-    const TrilinosWrappers::MPI::Vector &,                                    \
-    const double,                                                             \
-    const bool,                                                               \
-    TrilinosWrappers::MPI::Vector &);                                         \
+  template typename SoftRobotDynamics<dim>::AssemblyResult SoftRobotDynamics< \
+    dim>::evaluate_residual(const TrilinosWrappers::MPI::Vector &,            \
+                            const double,                                     \
+                            const bool,                                       \
+                            TrilinosWrappers::MPI::Vector &);                 \
   template typename SoftRobotDynamics<dim>::AssemblyResult                    \
   SoftRobotDynamics<dim>::newton_solve(TrilinosWrappers::MPI::Vector &,       \
                                        const ResidualEvaluator &,             \
@@ -527,11 +579,14 @@ namespace SoftRobot
     TrilinosWrappers::SparseMatrix &,                                         \
     const TrilinosWrappers::MPI::Vector &,                                    \
     TrilinosWrappers::MPI::Vector &);                                         \
-  template void SoftRobotDynamics<dim>::solve_static_equilibrium(const double); \
+  template void SoftRobotDynamics<dim>::solve_static_equilibrium(             \
+    const double);                                                            \
   template void SoftRobotDynamics<dim>::compute_initial_acceleration();       \
   template void SoftRobotDynamics<dim>::initialize_state();                   \
-  template void SoftRobotDynamics<dim>::solve_nonlinear_timestep(const double); \
-  template void SoftRobotDynamics<dim>::update_energies(const AssemblyResult &); \
+  template void SoftRobotDynamics<dim>::solve_nonlinear_timestep(             \
+    const double);                                                            \
+  template void SoftRobotDynamics<dim>::update_energies(                      \
+    const AssemblyResult &);                                                  \
   template bool SoftRobotDynamics<dim>::advance_one_step();                   \
   template const TrilinosWrappers::SparseMatrix &                             \
   SoftRobotDynamics<dim>::tangent_stiffness_matrix();

@@ -1,5 +1,4 @@
 #include <deal.II/differentiation/ad.h>
-
 #include <material/neo_hookean_energy.h>
 
 namespace SoftRobot
@@ -11,7 +10,8 @@ namespace SoftRobot
                                           const double bulk_modulus)
     : mu(shear_modulus)
     , kappa(bulk_modulus)
-  {}
+  {
+  }
 
 
 
@@ -41,16 +41,18 @@ namespace SoftRobot
 
   template <int dim>
   void
-  NeoHookeanEnergy<dim>::evaluate(const Tensor<2, dim> & displacement_gradient,
+  NeoHookeanEnergy<dim>::evaluate(const Tensor<2, dim>  &displacement_gradient,
                                   MaterialResponse<dim> &response) const
   {
     constexpr Differentiation::AD::NumberTypes ad_type_code =
       Differentiation::AD::NumberTypes::sacado_dfad_dfad;
-    using ADHelper = Differentiation::AD::ScalarFunction<dim, ad_type_code, double>;
+    using ADHelper =
+      Differentiation::AD::ScalarFunction<dim, ad_type_code, double>;
     using ADNumber = typename ADHelper::ad_type;
 
     const FEValuesExtractors::SymmetricTensor<2> E_extractor(0);
-    const SymmetricTensor<2, dim> E = green_lagrange_strain(displacement_gradient);
+    const SymmetricTensor<2, dim>                E =
+      green_lagrange_strain(displacement_gradient);
 
     ADHelper ad_helper(SymmetricTensor<2, dim>::n_independent_components);
     ad_helper.register_independent_variable(E, E_extractor);
@@ -65,7 +67,8 @@ namespace SoftRobot
     response.energy = ad_helper.compute_value();
     ad_helper.compute_gradient(dpsi);
     ad_helper.compute_hessian(d2psi);
-    response.second_piola = ad_helper.extract_gradient_component(dpsi, E_extractor);
+    response.second_piola =
+      ad_helper.extract_gradient_component(dpsi, E_extractor);
     response.material_tangent =
       ad_helper.extract_hessian_component(d2psi, E_extractor, E_extractor);
   }
@@ -118,7 +121,7 @@ namespace SoftRobot
 
   template <int dim>
   SymmetricTensor<2, dim>
-  NeoHookeanEnergy<dim>::cauchy_stress(const Tensor<2, dim> &         F,
+  NeoHookeanEnergy<dim>::cauchy_stress(const Tensor<2, dim>          &F,
                                        const SymmetricTensor<2, dim> &S) const
   {
     return symmetrize(F * Tensor<2, dim>(S) * transpose(F)) / volume_ratio(F);
@@ -128,7 +131,7 @@ namespace SoftRobot
 
   template <int dim>
   Tensor<4, dim>
-  first_piola_tangent(const Tensor<2, dim> &         F,
+  first_piola_tangent(const Tensor<2, dim>          &F,
                       const SymmetricTensor<2, dim> &S,
                       const SymmetricTensor<4, dim> &CC)
   {
@@ -150,10 +153,11 @@ namespace SoftRobot
 
 
   // The explicit instantiations for the three dimensions, in one place.
-#define SOFT_ROBOT_INSTANTIATE(dim)                                         \
-  template class NeoHookeanEnergy<dim>;                                     \
-  template Tensor<4, dim> first_piola_tangent<dim>(                        \
-    const Tensor<2, dim> &, const SymmetricTensor<2, dim> &,               \
+#define SOFT_ROBOT_INSTANTIATE(dim)                 \
+  template class NeoHookeanEnergy<dim>;             \
+  template Tensor<4, dim> first_piola_tangent<dim>( \
+    const Tensor<2, dim> &,                         \
+    const SymmetricTensor<2, dim> &,                \
     const SymmetricTensor<4, dim> &);
 
   SOFT_ROBOT_INSTANTIATE(1)

@@ -1,11 +1,8 @@
-#include <deal.II/base/exceptions.h>
-
-#include <deal.II/lac/lapack_full_matrix.h>
-
-#include <time_integration/hht_stepper.h>
-
 #include <cmath>
+#include <deal.II/base/exceptions.h>
+#include <deal.II/lac/lapack_full_matrix.h>
 #include <sstream>
+#include <time_integration/hht_stepper.h>
 
 namespace SoftRobot
 {
@@ -13,24 +10,30 @@ namespace SoftRobot
 
   HHTStepper::HHTStepper(const double alpha)
     : HHTStepper(alpha, (1. - alpha) * (1. - alpha) / 4., 0.5 - alpha)
-  {}
+  {
+  }
 
 
 
-  HHTStepper::HHTStepper(const double alpha, const double beta, const double gamma)
+  HHTStepper::HHTStepper(const double alpha,
+                         const double beta,
+                         const double gamma)
     : alpha_(alpha)
     , beta_(beta)
     , gamma_(gamma)
   {
     AssertThrow(alpha >= -1. / 3. && alpha <= 0.,
                 ExcMessage("The HHT parameter alpha must lie in [-1/3, 0], "
-                           "but is " + std::to_string(alpha) + "."));
+                           "but is " +
+                           std::to_string(alpha) + "."));
     AssertThrow(beta > 0. && beta <= 1.,
                 ExcMessage("The Newmark parameter beta must lie in (0, 1], "
-                           "but is " + std::to_string(beta) + "."));
+                           "but is " +
+                           std::to_string(beta) + "."));
     AssertThrow(gamma >= 0. && gamma <= 1.5,
                 ExcMessage("The Newmark parameter gamma must lie in [0, 1.5], "
-                           "but is " + std::to_string(gamma) + "."));
+                           "but is " +
+                           std::to_string(gamma) + "."));
   }
 
 
@@ -54,8 +57,7 @@ namespace SoftRobot
   {
     const double c = 2. * xi * Omega; // damping per unit scaled velocity
     const double k = Omega * Omega;   // stiffness per unit displacement
-    const double denominator =
-      1. + (1. + alpha_) * (c * gamma_ + k * beta_);
+    const double denominator = 1. + (1. + alpha_) * (c * gamma_ + k * beta_);
 
     Tensor<2, 3> A;
     for (unsigned int column = 0; column < 3; ++column)
@@ -63,9 +65,9 @@ namespace SoftRobot
         const double d0 = (column == 0), w0 = (column == 1), s0 = (column == 2);
         const double w_known = w0 + (1. - gamma_) * s0;
         const double d_known = d0 + w0 + (0.5 - beta_) * s0;
-        const double s1 =
-          (-(1. + alpha_) * (c * w_known + k * d_known) + alpha_ * (c * w0 + k * d0)) /
-          denominator;
+        const double s1      = (-(1. + alpha_) * (c * w_known + k * d_known) +
+                           alpha_ * (c * w0 + k * d0)) /
+                          denominator;
         A[0][column] = d_known + beta_ * s1;
         A[1][column] = w_known + gamma_ * s1;
         A[2][column] = s1;
@@ -78,7 +80,7 @@ namespace SoftRobot
   double
   HHTStepper::spectral_radius(const double Omega, const double xi) const
   {
-    const Tensor<2, 3>         A = amplification_matrix(Omega, xi);
+    const Tensor<2, 3>       A = amplification_matrix(Omega, xi);
     LAPACKFullMatrix<double> matrix(3, 3);
     for (unsigned int i = 0; i < 3; ++i)
       for (unsigned int j = 0; j < 3; ++j)
@@ -120,9 +122,10 @@ namespace SoftRobot
   {
     std::ostringstream out;
     out << "HHT-alpha: alpha = " << alpha_ << ", beta = " << beta_
-        << ", gamma = " << gamma_ << ", spectral radius at infinity = "
-        << spectral_radius(1e8)
-        << (is_standard_family() ? " (standard family)" : " (user-given beta, gamma)");
+        << ", gamma = " << gamma_
+        << ", spectral radius at infinity = " << spectral_radius(1e8)
+        << (is_standard_family() ? " (standard family)"
+                                 : " (user-given beta, gamma)");
     return out.str();
   }
 } // namespace SoftRobot
