@@ -321,6 +321,30 @@ namespace
                 {frequency, damping_ratio, duration, sample_rate, phase});
     return grid;
   }
+  // A readable name of a grid case for failure messages.
+  std::string
+  describe(const GridCase &c)
+  {
+    return "f = " + std::to_string(c.frequency) +
+           " Hz, xi = " + std::to_string(c.damping_ratio) +
+           ", T = " + std::to_string(c.duration) +
+           " s, fs = " + std::to_string(c.sample_rate) +
+           " Hz, phase = " + std::to_string(c.phase);
+  }
+
+  // The analysis of the free decay of one grid case (amplitude 0.03 mm
+  // about an offset of 0.12 mm).
+  SpectralResult
+  analyse_grid_case(const GridCase &c)
+  {
+    return analyse_signal(
+      sample_free_decay({{c.frequency, c.damping_ratio, 0.03, c.phase}},
+                        0.12,
+                        c.duration,
+                        c.sample_rate),
+      c.sample_rate);
+  }
+
 } // namespace
 
 
@@ -336,17 +360,8 @@ TEST(DampedSinusoidGrid, ModalFitRecoversFrequencyAndDamping)
   double worst_frequency_error = 0., worst_damping_error = 0.;
   for (const GridCase &c : single_mode_grid())
     {
-      SCOPED_TRACE("f = " + std::to_string(c.frequency) +
-                   " Hz, xi = " + std::to_string(c.damping_ratio) +
-                   ", T = " + std::to_string(c.duration) +
-                   " s, fs = " + std::to_string(c.sample_rate) +
-                   " Hz, phase = " + std::to_string(c.phase));
-      const SpectralResult result = analyse_signal(
-        sample_free_decay({{c.frequency, c.damping_ratio, 0.03, c.phase}},
-                          0.12,
-                          c.duration,
-                          c.sample_rate),
-        c.sample_rate);
+      SCOPED_TRACE(describe(c));
+      const SpectralResult result = analyse_grid_case(c);
 
       ASSERT_TRUE(result.has_peak) << result.no_peak_reason;
       EXPECT_TRUE(result.secondary_peaks.empty());
@@ -426,17 +441,8 @@ TEST(DampedSinusoidGrid, SpectralPeakAndHalfPowerFollowTruncationTheory)
   double worst_bandwidth_ratio = 0.;
   for (const GridCase &c : single_mode_grid())
     {
-      SCOPED_TRACE("f = " + std::to_string(c.frequency) +
-                   " Hz, xi = " + std::to_string(c.damping_ratio) +
-                   ", T = " + std::to_string(c.duration) +
-                   " s, fs = " + std::to_string(c.sample_rate) +
-                   " Hz, phase = " + std::to_string(c.phase));
-      const SpectralResult result = analyse_signal(
-        sample_free_decay({{c.frequency, c.damping_ratio, 0.03, c.phase}},
-                          0.12,
-                          c.duration,
-                          c.sample_rate),
-        c.sample_rate);
+      SCOPED_TRACE(describe(c));
+      const SpectralResult result = analyse_grid_case(c);
       ASSERT_TRUE(result.has_peak);
 
       const double damped_frequency =
