@@ -193,6 +193,8 @@ namespace SoftRobot
       unsigned int tip_region_id;
       std::string  trajectory_file;
       unsigned int progress_interval;
+      bool         spectral_analysis;
+      double       spectral_skip;
 
       static void
       declare_parameters(ParameterHandler &prm);

@@ -267,6 +267,8 @@ namespace SoftRobot
     void
     open_trajectory_file();
     void
+    analyse_trajectory() const;
+    void
     write_trajectory_line();
 
     // The HHT residual $\mathbf r(\mathbf u_{n+1})$ for a trial

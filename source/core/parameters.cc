@@ -529,6 +529,21 @@ namespace SoftRobot
                         "CSV file in the output directory with one row per "
                         "time step: time, time step, tip displacement and "
                         "velocity, energies, Newton iterations.");
+      prm.declare_entry(
+        "Spectral analysis",
+        "false",
+        Patterns::Bool(),
+        "At the end of the run, analyse the tip trajectory "
+        "as tip-spectrum does (peak frequency, half-power "
+        "damping ratio, damped-mode fit, logarithmic "
+        "decrement, per direction), print a summary and "
+        "write tip_spectrum.csv and tip_spectrum_magnitudes.csv "
+        "to the output directory.");
+      prm.declare_entry("Spectral analysis skip",
+                        "0",
+                        Patterns::Double(0),
+                        "Seconds at the start of the trajectory that the "
+                        "spectral analysis leaves out (e.g. a transient).");
       prm.declare_entry("Progress interval",
                         "10",
                         Patterns::Integer(0),
@@ -545,6 +560,8 @@ namespace SoftRobot
       output_interval   = prm.get_double("Output interval");
       trajectory_file   = prm.get("Trajectory file");
       progress_interval = prm.get_integer("Progress interval");
+      spectral_analysis = prm.get_bool("Spectral analysis");
+      spectral_skip     = prm.get_double("Spectral analysis skip");
       const auto words =
         Utilities::split_string_list(prm.get("Tip region"), ' ');
       AssertThrow(words.size() == 2 &&

@@ -6,6 +6,8 @@
 // with the motion of the tip region and the energy balance, the input of
 // the spectral analysis.
 
+#include <analysis/spectral_analysis.h>
+#include <analysis/spectral_report.h>
 #include <core/soft_robot_dynamics.h>
 #include <deal.II/base/quadrature_lib.h>
 #include <deal.II/fe/fe_values.h>
@@ -273,11 +275,41 @@ namespace SoftRobot
 
 
 
-#define SOFT_ROBOT_INSTANTIATE(dim)                              \
-  template std::pair<Tensor<1, dim>, Tensor<1, dim>>             \
-                SoftRobotDynamics<dim>::tip_motion() const;      \
-  template void SoftRobotDynamics<dim>::open_trajectory_file();  \
-  template void SoftRobotDynamics<dim>::write_trajectory_line(); \
+  // @sect4{SoftRobotDynamics::analyse_trajectory}
+  //
+  // The spectral analysis of the tip trajectory at the end of a run, the
+  // same as the program tip-spectrum with its default options: peak
+  // frequency and damping ratio per direction (vertical, and for pendulum
+  // motions horizontal and depth in the best-fit plane through the axis).
+  template <int dim>
+  void
+  SoftRobotDynamics<dim>::analyse_trajectory() const
+  {
+    if (Utilities::MPI::this_mpi_process(mpi_communicator) != 0)
+      return;
+    const std::string directory = parameters.output_directory + "/";
+    const Analysis::TrajectoryAnalysis analysis =
+      Analysis::analyse_trajectory(Analysis::read_tip_trajectory(
+                                     directory + parameters.trajectory_file),
+                                   Analysis::SpectralOptions(),
+                                   parameters.spectral_skip);
+    std::ofstream(directory + "tip_spectrum.csv")
+      << Analysis::spectral_table_csv(analysis);
+    std::ofstream(directory + "tip_spectrum_magnitudes.csv")
+      << Analysis::spectrum_csv(analysis);
+    pcout << "Spectral analysis of the tip motion (" << directory
+          << "tip_spectrum.csv):\n"
+          << Analysis::spectral_summary(analysis) << std::flush;
+  }
+
+
+
+#define SOFT_ROBOT_INSTANTIATE(dim)                                 \
+  template std::pair<Tensor<1, dim>, Tensor<1, dim>>                \
+                SoftRobotDynamics<dim>::tip_motion() const;         \
+  template void SoftRobotDynamics<dim>::open_trajectory_file();     \
+  template void SoftRobotDynamics<dim>::analyse_trajectory() const; \
+  template void SoftRobotDynamics<dim>::write_trajectory_line();    \
   template void SoftRobotDynamics<dim>::output_results(const unsigned int);
 
   SOFT_ROBOT_INSTANTIATE(1)

@@ -618,6 +618,12 @@ namespace SoftRobot
           << " linear iterations, " << total_cutbacks << " time-step cutbacks."
           << std::endl;
     computing_timer.print_summary();
+
+    if (parameters.spectral_analysis)
+      {
+        trajectory.close();
+        analyse_trajectory();
+      }
   }
 
 
