@@ -295,6 +295,7 @@ namespace SoftRobot
     std::unique_ptr<FESystem<dim>>       fe;
     DoFHandler<dim>                      dof_handler;
     std::unique_ptr<Quadrature<dim>>     cell_quadrature;
+    std::unique_ptr<Quadrature<dim>>     mass_quadrature;
     std::unique_ptr<Quadrature<dim - 1>> face_quadrature;
     bool                                 simplex_mesh = false;
 

@@ -136,9 +136,12 @@ namespace SoftRobot
       prm.declare_entry("Quadrature points",
                         "0",
                         Patterns::Integer(0, 5),
-                        "Gauss points per direction (for simplices: the "
-                        "degree of exactness minus one, as QGaussSimplex "
-                        "counts). 0 chooses p + 1.");
+                        "Gauss points per direction of the quadrature of "
+                        "the internal forces (for simplices the argument of "
+                        "QGaussSimplex). 0 chooses the cheapest exact one "
+                        "for a linear problem: p + 1 on hypercubes, p on "
+                        "simplices (one point for linear tetrahedra). The "
+                        "mass matrix always uses p + 1.");
       prm.leave_subsection();
     }
 

@@ -288,26 +288,36 @@ namespace SoftRobot
       }
 
     // The finite element, mapping and quadrature follow the cell shape.
+    // The quadrature of the stiffness is the cheapest that integrates the
+    // stiffness of a linear problem exactly on affine cells (its integrand,
+    // a product of two gradients, has degree 2(p-1) on simplices and 2p per
+    // direction on hypercubes): QGaussSimplex(p) -- one point for linear
+    // tetrahedra, which makes them constant-strain elements -- and QGauss
+    // with p + 1 points per direction. The mass matrix (degree 2p) always
+    // gets one point more on simplices.
     const unsigned int p = parameters.degree;
-    const unsigned int n_q =
-      parameters.quadrature_points > 0 ? parameters.quadrature_points : p + 1;
     simplex_mesh = (dim > 1) && triangulation.all_reference_cells_are_simplex();
     AssertThrow(simplex_mesh ||
                   triangulation.all_reference_cells_are_hyper_cube(),
                 ExcMessage("Meshes that mix cell shapes are not supported."));
+    const unsigned int n_q = parameters.quadrature_points > 0
+                               ? parameters.quadrature_points
+                               : (simplex_mesh ? p : p + 1);
     if (simplex_mesh)
       {
         fe      = std::make_unique<FESystem<dim>>(FE_SimplexP<dim>(p), dim);
         mapping = std::make_unique<MappingFE<dim>>(FE_SimplexP<dim>(1));
         cell_quadrature = std::make_unique<QGaussSimplex<dim>>(n_q);
-        face_quadrature = std::make_unique<QGaussSimplex<dim - 1>>(n_q);
+        mass_quadrature = std::make_unique<QGaussSimplex<dim>>(p + 1);
+        face_quadrature = std::make_unique<QGaussSimplex<dim - 1>>(p + 1);
       }
     else
       {
         fe              = std::make_unique<FESystem<dim>>(FE_Q<dim>(p), dim);
         mapping         = std::make_unique<MappingQ<dim>>(1);
         cell_quadrature = std::make_unique<QGauss<dim>>(n_q);
-        face_quadrature = std::make_unique<QGauss<dim - 1>>(n_q);
+        mass_quadrature = std::make_unique<QGauss<dim>>(p + 1);
+        face_quadrature = std::make_unique<QGauss<dim - 1>>(p + 1);
       }
 
     pcout << "Mesh: " << triangulation.n_global_active_cells() << ' '
@@ -486,7 +496,7 @@ namespace SoftRobot
   {
     FEValues<dim>      fe_values(*mapping,
                             *fe,
-                            *cell_quadrature,
+                            *mass_quadrature,
                             update_values | update_JxW_values);
     const unsigned int dofs_per_cell = fe->n_dofs_per_cell();
     FullMatrix<double> cell_matrix(dofs_per_cell, dofs_per_cell);
