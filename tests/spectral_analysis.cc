@@ -124,6 +124,20 @@ namespace
               2. * mean_ratio * (1. / mean + 2. / (mean * mean))};
   }
 
+  // The record of a damped mode in the normalised variables of the bounds
+  // below: the decay exponent $s = \xi\omega_n T$ over the record and the
+  // distance $W = 2\omega_d T$ to the mirror image at $-f_d$.
+  std::pair<double, double>
+  normalised_record(const double frequency,
+                    const double damping_ratio,
+                    const double duration)
+  {
+    const double omega_n = 2. * pi * frequency;
+    const double omega_d =
+      omega_n * std::sqrt(1. - damping_ratio * damping_ratio);
+    return {damping_ratio * omega_n * duration, 2. * omega_d * duration};
+  }
+
   // <i>Shift of the peak.</i> With $|M+P|^2 = |M|^2 + 2\Re(M\bar P) +
   // |P|^2$ and $\frac{d}{dw}|M|^2 = 0$ at $w=0$, the maximum moves by at
   // most
@@ -137,11 +151,7 @@ namespace
                             const double damping_ratio,
                             const double duration)
   {
-    const double omega_n = 2. * pi * frequency;
-    const double omega_d =
-      omega_n * std::sqrt(1. - damping_ratio * damping_ratio);
-    const double s = damping_ratio * omega_n * duration;
-    const double W = 2. * omega_d * duration;
+    const auto [s, W] = normalised_record(frequency, damping_ratio, duration);
 
     const double decay = std::exp(-s);
     const double E     = (1. - decay) / s;
@@ -164,11 +174,7 @@ namespace
                                  const double damping_ratio,
                                  const double duration)
   {
-    const double omega_n = 2. * pi * frequency;
-    const double omega_d =
-      omega_n * std::sqrt(1. - damping_ratio * damping_ratio);
-    const double s = damping_ratio * omega_n * duration;
-    const double W = 2. * omega_d * duration;
+    const auto [s, W] = normalised_record(frequency, damping_ratio, duration);
 
     const double w_h =
       pi * truncated_decay_half_power_width(s, SpectralWindow::none);

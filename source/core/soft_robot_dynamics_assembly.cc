@@ -1,8 +1,9 @@
 // @sect3{Assembly: internal forces, tangent, external forces}
 //
 // This file holds the part of SoftRobotDynamics that runs in every Newton
-// iteration: the assembly of the internal force vector (elastic plus
-// viscous stresses) with its tangent matrix, and of the external forces.
+// iteration: the assembly of the elastic internal force vector with its
+// tangent matrix and the damping matrix of the state, and of the external
+// forces.
 
 #include <core/soft_robot_dynamics.h>
 #include <deal.II/fe/fe_values.h>

@@ -453,7 +453,7 @@ namespace SoftRobot
   //
   // The energy balance of the step. Kinetic, strain and gravitational
   // energy are state functions; the work of the tractions and the energy
-  // dissipated by the viscous stresses are accumulated with the
+  // dissipated by the damping forces are accumulated with the
   // trapezoidal rule over the displacement increment. Whatever is left in
   // the balance is the algorithmic dissipation of the HHT scheme (and the
   // error of the trapezoidal accumulation).
