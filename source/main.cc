@@ -11,6 +11,8 @@
 #include <deal.II/base/exceptions.h>
 #include <deal.II/base/mpi.h>
 #include <iostream>
+#include <string>
+#include <vector>
 
 namespace
 {
@@ -25,9 +27,13 @@ namespace
   void
   print_usage()
   {
-    std::cerr << "Usage: soft-robot <file.prm>\n"
-                 "       soft-robot --print-parameters   (all entries with "
-                 "defaults and documentation)\n";
+    std::cerr
+      << "Usage: soft-robot <file.prm> [--set 'Subsection/Entry=value']...\n"
+         "       soft-robot --print-parameters   (all entries with "
+         "defaults and documentation)\n"
+         "Each --set replaces one entry of the file, e.g.\n"
+         "  --set 'Time integration/End time=0.5'\n"
+         "  --set 'Silicone library/Parameter set=calibrated'\n";
   }
 } // namespace
 
@@ -39,13 +45,24 @@ main(int argc, char *argv[])
   const bool                               root =
     dealii::Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0;
 
-  if (argc != 2)
+  if (argc < 2)
     {
       if (root)
         print_usage();
       return 1;
     }
-  const std::string argument = argv[1];
+  const std::string        argument = argv[1];
+  std::vector<std::string> overrides;
+  for (int i = 2; i < argc; ++i)
+    {
+      if (std::string(argv[i]) != "--set" || i + 1 == argc)
+        {
+          if (root)
+            print_usage();
+          return 1;
+        }
+      overrides.emplace_back(argv[++i]);
+    }
   try
     {
       if (argument == "--print-parameters")
@@ -58,7 +75,7 @@ main(int argc, char *argv[])
         }
 
       Parameters::AllParameters parameters;
-      parameters.read_file(argument);
+      parameters.read_file(argument, overrides);
       switch (parameters.dimension)
         {
           case 1:

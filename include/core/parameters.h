@@ -92,11 +92,40 @@ namespace SoftRobot
       double      mass;
       double      damping_zeta;
       double      section;
+      std::string silicone;
+    };
+
+    // The silicones are described once, in a library of their measured and
+    // fitted data (parameters/silicones.prm, included by every scene), and
+    // a material takes its shear modulus, bulk modulus and damping from the
+    // library entry it names. The library holds two parameter sets per
+    // silicone: 'baseline' (the shear modulus is the study's neo-Hookean
+    // C1, as the reference used it) and 'calibrated' (fitted to the
+    // experiment-1 frequency). In both, kappa = (bulk-to-shear ratio) mu
+    // and zeta = 2 xi / omega from the experiment-1 frequency f and damping
+    // ratio xi: zeta = xi / (pi f).
+    struct Silicone
+    {
+      std::string name;
+      double      c1;
+      double      calibrated_shear_modulus;
+      double      bulk_to_shear_ratio;
+      double      frequency;
+      double      damping_ratio;
+
+      double
+      shear_modulus(const std::string &parameter_set) const;
+      double
+      damping_coefficient() const;
     };
 
     struct Materials
     {
       static constexpr unsigned int max_material_id = 9;
+      static constexpr unsigned int max_silicones   = 8;
+
+      std::string                     parameter_set;
+      std::map<std::string, Silicone> silicones;
       // Only the subsections whose `Name` is not empty.
       std::map<unsigned int, Material> by_id;
 
@@ -227,8 +256,12 @@ namespace SoftRobot
 
       // Reads and checks a parameter file; throws with a message that names
       // the file, the entry and the allowed values.
+      //
+      // The overrides, each 'Subsection/.../Entry=value', replace entries of
+      // the file after it is read (the command line's --set).
       void
-      read_file(const std::string &filename);
+      read_file(const std::string              &filename,
+                const std::vector<std::string> &overrides = {});
       void
       read_string(const std::string &text);
 

@@ -1,5 +1,6 @@
 #include <core/parameters.h>
 #include <deal.II/base/exceptions.h>
+#include <deal.II/base/numbers.h>
 #include <deal.II/base/utilities.h>
 #include <filesystem>
 #include <fstream>
@@ -206,13 +207,104 @@ namespace SoftRobot
                             "dim = 1: cross-section area of the column, "
                             "mm^2; dim = 2: out-of-plane thickness, mm; "
                             "dim = 3: must be 1.");
+          prm.declare_entry("Silicone",
+                            "",
+                            Patterns::Anything(),
+                            "If not empty: the Name of an entry of the "
+                            "Silicone library, which then gives this "
+                            "material's shear modulus, bulk modulus and "
+                            "damping coefficient (the three entries above "
+                            "are ignored).");
           prm.leave_subsection();
         }
+
+      prm.enter_subsection("Silicone library");
+      prm.declare_entry("Parameter set",
+                        "baseline",
+                        Patterns::Selection("baseline|calibrated"),
+                        "Which shear modulus the library gives: "
+                        "'baseline', the neo-Hookean C1 of the material "
+                        "database as the reference study used it, or "
+                        "'calibrated', fitted to the experiment-1 "
+                        "frequency.");
+      for (unsigned int i = 1; i <= max_silicones; ++i)
+        {
+          prm.enter_subsection("Silicone " + std::to_string(i));
+          prm.declare_entry("Name",
+                            "",
+                            Patterns::Anything(),
+                            "Name by which a material refers to this entry; "
+                            "empty: the entry is not used.");
+          prm.declare_entry("Neo-Hookean C1",
+                            "100",
+                            Patterns::Double(1e-12),
+                            "C1 of the material database's neo-Hookean "
+                            "fit, kPa: the baseline shear modulus.");
+          prm.declare_entry("Calibrated shear modulus",
+                            "0",
+                            Patterns::Double(0),
+                            "Shear modulus fitted to the experiment-1 "
+                            "frequency, kPa (0: not calibrated).");
+          prm.declare_entry("Bulk-to-shear ratio",
+                            "100",
+                            Patterns::Double(1),
+                            "kappa / mu in both parameter sets.");
+          prm.declare_entry("Experiment-1 frequency",
+                            "1",
+                            Patterns::Double(1e-6),
+                            "Measured frequency of the vertical "
+                            "oscillation, Hz.");
+          prm.declare_entry("Experiment-1 damping ratio",
+                            "0",
+                            Patterns::Double(0, 1),
+                            "Measured damping ratio of the vertical "
+                            "oscillation; zeta = xi / (pi f).");
+          prm.leave_subsection();
+        }
+      prm.leave_subsection();
+    }
+
+
+
+    double
+    Silicone::shear_modulus(const std::string &parameter_set) const
+    {
+      return (parameter_set == "calibrated") ? calibrated_shear_modulus : c1;
+    }
+
+    double
+    Silicone::damping_coefficient() const
+    {
+      return damping_ratio / (numbers::PI * frequency);
     }
 
     void
     Materials::parse_parameters(ParameterHandler &prm)
     {
+      silicones.clear();
+      prm.enter_subsection("Silicone library");
+      parameter_set = prm.get("Parameter set");
+      for (unsigned int i = 1; i <= max_silicones; ++i)
+        {
+          prm.enter_subsection("Silicone " + std::to_string(i));
+          Silicone silicone;
+          silicone.name = prm.get("Name");
+          if (!silicone.name.empty())
+            {
+              silicone.c1 = prm.get_double("Neo-Hookean C1");
+              silicone.calibrated_shear_modulus =
+                prm.get_double("Calibrated shear modulus");
+              silicone.bulk_to_shear_ratio =
+                prm.get_double("Bulk-to-shear ratio");
+              silicone.frequency = prm.get_double("Experiment-1 frequency");
+              silicone.damping_ratio =
+                prm.get_double("Experiment-1 damping ratio");
+              silicones[silicone.name] = silicone;
+            }
+          prm.leave_subsection();
+        }
+      prm.leave_subsection();
+
       by_id.clear();
       for (unsigned int id = 0; id <= max_material_id; ++id)
         {
@@ -227,6 +319,33 @@ namespace SoftRobot
               material.mass          = prm.get_double("Mass");
               material.damping_zeta  = prm.get_double("Damping coefficient");
               material.section       = prm.get_double("Section");
+              material.silicone      = prm.get("Silicone");
+              if (!material.silicone.empty())
+                {
+                  const auto entry = silicones.find(material.silicone);
+                  std::string known;
+                  for (const auto &[name, silicone] : silicones)
+                    known += " '" + name + "'";
+                  AssertThrow(entry != silicones.end(),
+                              ExcMessage("Material " + std::to_string(id) +
+                                         "/Silicone names '" +
+                                         material.silicone +
+                                         "', which the Silicone library "
+                                         "does not have (it has:" +
+                                         known + ")."));
+                  const Silicone &silicone = entry->second;
+                  AssertThrow(silicone.shear_modulus(parameter_set) > 0,
+                              ExcMessage("Silicone library: '" +
+                                         silicone.name +
+                                         "' has no Calibrated shear modulus "
+                                         "(it is 0), but the Parameter set "
+                                         "is 'calibrated'."));
+                  material.shear_modulus =
+                    silicone.shear_modulus(parameter_set);
+                  material.bulk_modulus =
+                    silicone.bulk_to_shear_ratio * material.shear_modulus;
+                  material.damping_zeta = silicone.damping_coefficient();
+                }
               by_id[id]              = material;
             }
           prm.leave_subsection();
@@ -612,11 +731,52 @@ namespace SoftRobot
 
 
 
+    // An override 'Subsection/.../Entry=value' from the command line. The
+    // value is checked against the entry's pattern as if it stood in the
+    // file; a mistake names the override and the file.
+    namespace
+    {
+      void
+      apply_override(ParameterHandler  &prm,
+                     const std::string &assignment,
+                     const std::string &filename)
+      {
+        const std::string where =
+          "In the override --set '" + assignment + "' of '" + filename + "': ";
+        const auto equals = assignment.find('=');
+        AssertThrow(equals != std::string::npos && equals > 0,
+                    ExcMessage(where + "expected 'Subsection/Entry=value'."));
+        const std::vector<std::string> path = Utilities::split_string_list(
+          assignment.substr(0, equals), '/');
+        const std::string value =
+          Utilities::trim(assignment.substr(equals + 1));
+        for (unsigned int i = 0; i + 1 < path.size(); ++i)
+          prm.enter_subsection(path[i]);
+        try
+          {
+            prm.set(path.back(), value);
+          }
+        catch (ExceptionBase &error)
+          {
+            std::ostringstream reason;
+            error.print_info(reason);
+            for (unsigned int i = 0; i + 1 < path.size(); ++i)
+              prm.leave_subsection();
+            AssertThrow(false, ExcMessage(where + reason.str()));
+          }
+        for (unsigned int i = 0; i + 1 < path.size(); ++i)
+          prm.leave_subsection();
+      }
+    } // namespace
+
+
+
     // ParameterHandler's own messages name the file, the line, the entry
     // and its pattern when a value is out of range. We add the file name to
     // the messages about combinations of entries that it cannot check.
     void
-    AllParameters::read_file(const std::string &filename)
+    AllParameters::read_file(const std::string              &filename,
+                             const std::vector<std::string> &overrides)
     {
       std::ifstream file(filename);
       AssertThrow(file,
@@ -646,6 +806,8 @@ namespace SoftRobot
       ParameterHandler prm;
       declare_parameters(prm);
       prm.parse_input(text, filename);
+      for (const std::string &assignment : overrides)
+        apply_override(prm, assignment, filename);
       parse_parameters(prm);
       if (!mesh_file.empty() && std::filesystem::path(mesh_file).is_relative())
         mesh_file = (directory / mesh_file).string();

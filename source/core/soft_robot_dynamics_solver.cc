@@ -287,24 +287,41 @@ namespace SoftRobot
 
   // @sect4{SoftRobotDynamics::solve_static_equilibrium}
   //
-  // The equilibrium $\mathbf f_\text{int}(\mathbf u, \mathbf 0) = \lambda
-  // \mathbf f_\text{ext}(t)$ for a load factor $\lambda$ that rises in equal
-  // steps to one; a load step whose Newton iteration fails is halved.
+  // The equilibrium $\mathbf f_\text{int}(\mathbf u, \mathbf 0) =
+  // \lambda_g\mathbf f_g + \lambda_t\mathbf f_t(t)$ under gravity
+  // $\mathbf f_g$ and the tractions $\mathbf f_t$, reached in two phases of
+  // equal load steps: first the gravity factor $\lambda_g$ rises to one,
+  // then the traction factor $\lambda_t$. The order matters for a hanging
+  // body pushed sideways: under its weight it has the lateral (pendulum)
+  // stiffness of gravity, which the unloaded body lacks, and Newton's method
+  // started from the unloaded state would take a first step far beyond the
+  // equilibrium. A load step whose Newton iteration fails is halved.
   template <int dim>
   void
   SoftRobotDynamics<dim>::solve_static_equilibrium(const double time)
   {
-    TrilinosWrappers::MPI::Vector external(locally_owned_dofs,
-                                           mpi_communicator);
-    TrilinosWrappers::MPI::Vector internal(external);
+    TrilinosWrappers::MPI::Vector traction_force(locally_owned_dofs,
+                                                 mpi_communicator);
+    assemble_external_force(time, 1., traction_force);
+    traction_force -= gravity_force;
+    const bool has_gravity  = gravity_force.l2_norm() > 0.;
+    const bool has_traction = traction_force.l2_norm() > 0.;
 
-    double       load_factor = 0.;
+    TrilinosWrappers::MPI::Vector external(traction_force);
+    TrilinosWrappers::MPI::Vector internal(traction_force);
+    // The combined load parameter runs from 0 to 2: gravity factor
+    // min(lambda, 1), traction factor max(lambda - 1, 0).
+    double       load = has_gravity ? 0. : 1.;
+    const double end  = has_traction ? 2. : 1.;
     double       increment   = 1. / parameters.load_steps;
     unsigned int iterations  = 0;
-    while (load_factor < 1. - 1e-12)
+    while (load < end - 1e-12)
       {
-        const double target = std::min(1., load_factor + increment);
-        assemble_external_force(time, target, external);
+        const double phase_end = (load < 1. - 1e-12) ? 1. : 2.;
+        const double target    = std::min(phase_end, load + increment);
+        external               = 0.;
+        external.add(std::min(target, 1.), gravity_force);
+        external.add(std::max(target - 1., 0.), traction_force);
         const ResidualEvaluator static_residual =
           [&](const TrilinosWrappers::MPI::Vector &u,
               TrilinosWrappers::MPI::Vector       &r) {
@@ -325,7 +342,9 @@ namespace SoftRobot
                          external.l2_norm(),
                          iterations);
             total_newton_iterations += iterations;
-            load_factor = target;
+            load = target;
+            if (std::abs(load - phase_end) < 1e-12)
+              increment = 1. / parameters.load_steps;
           }
         catch (StepFailure &failure)
           {
@@ -337,7 +356,8 @@ namespace SoftRobot
                 " could not be found: " + failure.what());
           }
       }
-    pcout << "Static equilibrium found (load factor 1, last residual "
+    pcout << "Static equilibrium found (gravity, then tractions, in "
+          << parameters.load_steps << " load steps each; last residual "
           << last_residual << ")" << std::endl;
   }
 
