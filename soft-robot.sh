@@ -1,11 +1,13 @@
 #!/usr/bin/env bash
 # The two commands of the README, for a fresh Debian 12 machine (as root):
 #
-#   ./soft-robot.sh demo   install what is missing, build in Release, run the
-#                          default scene (parameters/bellows_release_quarter_3d.prm)
-#                          and the 1D and 2D scenes
-#   ./soft-robot.sh test   install what is missing, build in Debug (deal.II's
-#                          internal checks on), run the whole test suite
+#   ./soft-robot.sh demo       install what is missing, build in Release, run
+#                              the vertical oscillation of the Dragon Skin 20
+#                              actuator in 3D and its reduced 1D and 2D scenes
+#   ./soft-robot.sh test       install what is missing, build in Debug (deal.II's
+#                              internal checks on), run the whole test suite
+#   ./soft-robot.sh validate   build in Release, run all thirty bellows scenes
+#                              (two at a time) and write doc/validation.md
 #
 # Build directories: build-release/ and build-debug/ beside this script.
 set -euo pipefail
@@ -39,8 +41,8 @@ case "${1:-}" in
     install_missing_packages
     build Release build-release -DSOFT_ROBOT_BUILD_TESTS=OFF
     # The default scene is the 3D actuator; the 1D and 2D models follow.
-    for scene in bellows_release_quarter_3d column_1d plate_2d; do
-      build-release/soft-robot parameters/$scene.prm
+    for scene in vertical_ds20_3d column_ds20_1d planar_ds20_2d; do
+      build-release/soft-robot parameters/bellows/$scene.prm
       echo "Open output/$scene/solution.pvd in ParaView."
     done
     ;;
@@ -50,8 +52,35 @@ case "${1:-}" in
     cd build-debug
     ctest --output-on-failure -j "$(nproc)"
     ;;
+  validate)
+    packages+=(python3-matplotlib python3-numpy)
+    install_missing_packages
+    build Release build-release -DSOFT_ROBOT_BUILD_TESTS=OFF
+    # One scene: its output, the program's log and the wall time in
+    # output/<scene>/. A failed scene stops the report.
+    run_scene() {
+      local scene=$1 name
+      name=$(basename "$scene" .prm)
+      mkdir -p "output/$name"
+      local start milliseconds
+      start=$(date +%s%N)
+      if ! build-release/soft-robot "$scene" > "output/$name/run.log" 2>&1; then
+        echo "FAILED: $scene (see output/$name/run.log)" >&2
+        return 1
+      fi
+      milliseconds=$((($(date +%s%N) - start) / 1000000))
+      printf '%d.%03d\n' $((milliseconds / 1000)) $((milliseconds % 1000)) \
+        > "output/$name/wall_seconds"
+      echo "$name: $(cat "output/$name/wall_seconds") s"
+    }
+    export -f run_scene
+    ls parameters/bellows/*.prm | grep -v /protocol_ \
+      | xargs -P 2 -I {} bash -c 'run_scene {}'
+    /usr/bin/python3 doc/validation_report.py output doc
+    echo "Wrote doc/validation.md"
+    ;;
   *)
-    echo "Usage: $0 demo|test" >&2
+    echo "Usage: $0 demo|test|validate" >&2
     exit 2
     ;;
 esac

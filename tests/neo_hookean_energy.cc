@@ -503,3 +503,73 @@ TYPED_TEST(NeoHookeanEnergyTest, StressIsDerivativeOfEnergy)
   std::cout << "  dim = " << dim << ": worst relative error of dPsi/dh - P:dF "
             << worst_error << std::endl;
 }
+
+
+
+// @sect4{The positive semi-definite part of the tangent}
+//
+// positive_semidefinite_part() must return the tangent itself where it is
+// positive definite (at small strains: to round-off), and everywhere a
+// tensor with the symmetries of a tangent whose quadratic form is
+// non-negative and never above that of the tangent, i.e. $\mathcal C -
+// \mathcal C^+$ negative semi-definite. The large stretches below (up to a
+// factor four, and compression to a quarter) make the tangent indefinite
+// for some of them in 3D; the test asserts that at least one is, so that
+// it cannot pass without testing the projection there. (The tangents of
+// the incompressible 1D and 2D models stay positive definite in all of
+// these states.)
+TYPED_TEST(NeoHookeanEnergyTest, PositiveSemidefinitePartOfTangent)
+{
+  constexpr int               dim = TypeParam::value;
+  const NeoHookeanEnergy<dim> material(shear_modulus, bulk_modulus);
+  MaterialResponse<dim>       response;
+  std::mt19937                generator(7);
+  std::uniform_real_distribution<double> uniform(-1., 1.);
+  const auto random_strain = [&]() {
+    SymmetricTensor<2, dim> E;
+    for (unsigned int i = 0; i < dim; ++i)
+      for (unsigned int j = i; j < dim; ++j)
+        E[i][j] = uniform(generator);
+    return E;
+  };
+
+  // Small strain: unchanged.
+  material.evaluate(1e-3 * displacement_gradient(
+                             random_deformation_gradients<dim>(1, 3)[0]),
+                    response);
+  const SymmetricTensor<4, dim> small =
+    SoftRobot::positive_semidefinite_part(response.material_tangent);
+  EXPECT_LT((small - response.material_tangent).norm(),
+            1e-12 * response.material_tangent.norm());
+
+  bool found_indefinite = false;
+  for (const double stretch : {0.25, 0.5, 2., 3., 4.})
+    for (const Tensor<2, dim> &R : random_deformation_gradients<dim>(5, 11))
+      {
+        // A stretch along the first axis, rotated and perturbed.
+        Tensor<2, dim> F = R;
+        for (unsigned int i = 0; i < dim; ++i)
+          F[i][0] *= stretch;
+        material.evaluate(displacement_gradient(F), response);
+        const SymmetricTensor<4, dim> &CC = response.material_tangent;
+        const SymmetricTensor<4, dim>  CC_plus =
+          SoftRobot::positive_semidefinite_part(CC);
+        const double scale = CC.norm();
+        for (unsigned int k = 0; k < 50; ++k)
+          {
+            const SymmetricTensor<2, dim> E = random_strain();
+            const double full = E * CC * E, plus = E * CC_plus * E;
+            found_indefinite = found_indefinite || full < -1e-10 * scale;
+            EXPECT_GE(plus, -1e-10 * scale * E.norm() * E.norm());
+            EXPECT_GE(plus - full, -1e-10 * scale * E.norm() * E.norm());
+            // Major symmetry.
+            const SymmetricTensor<2, dim> G = random_strain();
+            EXPECT_NEAR(E * CC_plus * G,
+                        G * CC_plus * E,
+                        1e-10 * scale * E.norm() * G.norm());
+          }
+      }
+  if (dim == 3)
+    EXPECT_TRUE(found_indefinite)
+      << "no indefinite tangent among the states tested";
+}

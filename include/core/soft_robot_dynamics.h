@@ -22,13 +22,17 @@
 // $\mathbf C = \zeta\mathbf K$. In a nonlinear problem "the stiffness" has
 // to be made precise; we use
 // @f[
-//   C_{ij} = \int_{\Omega_0} \zeta\;\delta\mathbf E_i : \mathcal C(\mathbf
-//   u_n) : \delta\mathbf E_j\,dV,\qquad
+//   C_{ij} = \int_{\Omega_0} \zeta\;\delta\mathbf E_i : \mathcal
+//   C^+(\mathbf u_n) : \delta\mathbf E_j\,dV,\qquad
 //   \delta\mathbf E_i = \mathrm{sym}(\mathbf F^T\nabla_0\mathbf N_i),
 // @f]
 // the material part of the tangent stiffness at the start of each time
-// step (the last converged state), with each material's own $\zeta$. It is
-// symmetric and positive semi-definite, so the damping only dissipates;
+// step (the last converged state), with each material's own $\zeta$ and
+// the positive semi-definite part $\mathcal C^+$ of the material tangent
+// (which at large strains can have negative eigenvalues; with them, the
+// Ecoflex actuator's damping fed energy into mesh-scale motions until
+// elements inverted). It is symmetric and positive semi-definite, so the
+// damping only dissipates;
 // it leaves rigid-body motions undamped, also rotations of a prestressed
 // body (which the geometric part of $\mathbf K$ would damp); and, being
 // constant within a step, it keeps Newton's method exact (quadratically

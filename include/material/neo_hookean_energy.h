@@ -184,6 +184,21 @@ namespace SoftRobot
 
 
 
+  // The positive semi-definite part of a material tangent: with the
+  // symmetric strains written as vectors in Mandel's notation (off-diagonal
+  // components times $\sqrt2$, so that $\delta\mathbf E:\mathcal
+  // C:\delta\mathbf E$ is the quadratic form of a symmetric matrix), the
+  // matrix with its negative eigenvalues set to zero. The tangent of the
+  // neo-Hookean energy is positive definite at small strains but not at all
+  // large ones (strongly stretched or compressed states of the isochoric
+  // part); the damping matrix built from it must not be, or it would feed
+  // energy into the motion instead of taking it out.
+  template <int dim>
+  SymmetricTensor<4, dim>
+  positive_semidefinite_part(const SymmetricTensor<4, dim> &CC);
+
+
+
   namespace internal
   {
     template <typename Number>

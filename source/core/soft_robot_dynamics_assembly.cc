@@ -104,11 +104,19 @@ namespace SoftRobot
                   cell_force(i) += (delta_E[i] * response.second_piola) * JxW;
                 }
 
+              // The damping uses the positive semi-definite part of the
+              // material tangent (see positive_semidefinite_part()).
+              SymmetricTensor<4, dim> damping_tangent;
+              if (with_damping && zeta > 0.)
+                damping_tangent =
+                  positive_semidefinite_part(response.material_tangent);
               if (with_matrix)
                 for (unsigned int i = 0; i < dofs_per_cell; ++i)
                   {
                     const SymmetricTensor<2, dim> C_dE_i =
                       response.material_tangent * delta_E[i];
+                    const SymmetricTensor<2, dim> D_dE_i =
+                      damping_tangent * delta_E[i];
                     const Tensor<2, dim> grad_N_i_S =
                       grad_N[i] * Tensor<2, dim>(response.second_piola);
                     for (unsigned int j = 0; j <= i; ++j)
@@ -118,7 +126,8 @@ namespace SoftRobot
                         cell_matrix(i, j) +=
                           material_part +
                           scalar_product(grad_N_i_S, grad_N[j]) * JxW;
-                        cell_damping(i, j) += zeta * material_part;
+                        cell_damping(i, j) +=
+                          zeta * (D_dE_i * delta_E[j]) * JxW;
                       }
                   }
             }

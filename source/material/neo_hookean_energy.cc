@@ -1,5 +1,7 @@
 #include <deal.II/differentiation/ad.h>
 #include <material/neo_hookean_energy.h>
+#include <array>
+#include <cmath>
 
 namespace SoftRobot
 {
@@ -152,13 +154,99 @@ namespace SoftRobot
 
 
 
+  // The eigenvalues of the at most 6 x 6 matrix by the cyclic Jacobi method,
+  // which for so small a matrix converges in a handful of sweeps to full
+  // precision and needs no allocation.
+  template <int dim>
+  SymmetricTensor<4, dim>
+  positive_semidefinite_part(const SymmetricTensor<4, dim> &CC)
+  {
+    constexpr unsigned int n = dim * (dim + 1) / 2;
+    // The index pairs of the Mandel vector and their weights.
+    std::array<std::pair<unsigned int, unsigned int>, n> pairs;
+    std::array<double, n>                                weight;
+    for (unsigned int a = 0; a < n; ++a)
+      {
+        const TableIndices<2> indices =
+          SymmetricTensor<2, dim>::unrolled_to_component_indices(a);
+        pairs[a]  = {indices[0], indices[1]};
+        weight[a] = (pairs[a].first == pairs[a].second) ? 1. : std::sqrt(2.);
+      }
+    double M[n][n], V[n][n];
+    for (unsigned int a = 0; a < n; ++a)
+      for (unsigned int b = 0; b < n; ++b)
+        {
+          M[a][b] = weight[a] * weight[b] *
+                    CC[pairs[a].first][pairs[a].second][pairs[b].first]
+                      [pairs[b].second];
+          V[a][b] = (a == b) ? 1. : 0.;
+        }
+
+    for (unsigned int sweep = 0; sweep < 50; ++sweep)
+      {
+        double off_diagonal = 0., scale = 0.;
+        for (unsigned int a = 0; a < n; ++a)
+          for (unsigned int b = 0; b < n; ++b)
+            (a == b ? scale : off_diagonal) += M[a][b] * M[a][b];
+        if (off_diagonal <= 1e-30 * scale)
+          break;
+        for (unsigned int p = 0; p < n; ++p)
+          for (unsigned int q = p + 1; q < n; ++q)
+            if (M[p][q] != 0.)
+              {
+                // The rotation in the (p, q) plane that annihilates M[p][q].
+                const double theta = (M[q][q] - M[p][p]) / (2. * M[p][q]);
+                const double t =
+                  (theta >= 0. ? 1. : -1.) /
+                  (std::abs(theta) + std::sqrt(theta * theta + 1.));
+                const double c = 1. / std::sqrt(t * t + 1.), s = t * c;
+                for (unsigned int k = 0; k < n; ++k)
+                  {
+                    const double mkp = M[k][p], mkq = M[k][q];
+                    M[k][p]          = c * mkp - s * mkq;
+                    M[k][q]          = s * mkp + c * mkq;
+                  }
+                for (unsigned int k = 0; k < n; ++k)
+                  {
+                    const double mpk = M[p][k], mqk = M[q][k];
+                    M[p][k]          = c * mpk - s * mqk;
+                    M[q][k]          = s * mpk + c * mqk;
+                  }
+                for (unsigned int k = 0; k < n; ++k)
+                  {
+                    const double vkp = V[k][p], vkq = V[k][q];
+                    V[k][p]          = c * vkp - s * vkq;
+                    V[k][q]          = s * vkp + c * vkq;
+                  }
+              }
+      }
+
+    // Reassemble with the negative eigenvalues dropped.
+    SymmetricTensor<4, dim> positive;
+    for (unsigned int a = 0; a < n; ++a)
+      for (unsigned int b = 0; b < n; ++b)
+        {
+          double value = 0.;
+          for (unsigned int k = 0; k < n; ++k)
+            if (M[k][k] > 0.)
+              value += V[a][k] * M[k][k] * V[b][k];
+          positive[pairs[a].first][pairs[a].second][pairs[b].first]
+                  [pairs[b].second] = value / (weight[a] * weight[b]);
+        }
+    return positive;
+  }
+
+
+
   // The explicit instantiations for the three dimensions, in one place.
 #define SOFT_ROBOT_INSTANTIATE(dim)                 \
   template class NeoHookeanEnergy<dim>;             \
   template Tensor<4, dim> first_piola_tangent<dim>( \
     const Tensor<2, dim> &,                         \
     const SymmetricTensor<2, dim> &,                \
-    const SymmetricTensor<4, dim> &);
+    const SymmetricTensor<4, dim> &);               \
+  template SymmetricTensor<4, dim>                  \
+  positive_semidefinite_part<dim>(const SymmetricTensor<4, dim> &);
 
   SOFT_ROBOT_INSTANTIATE(1)
   SOFT_ROBOT_INSTANTIATE(2)

@@ -2,14 +2,23 @@
 #
 #   cmake -DPROGRAM=<soft-robot> -DPARAMETER_FILE=<prm> -DWORK_DIRECTORY=<dir>
 #         -DEXPECTED_EXIT=<code> [-DEXPECTED_MESSAGE=<regex>]
-#         [-DFORBIDDEN_DIRECTORY=<dir>] [-DTRAJECTORY=<csv>] -P check_command.cmake
+#         [-DFORBIDDEN_DIRECTORY=<dir>] [-DTRAJECTORY=<csv>]
+#         [-DOVERRIDES=<Subsection/Entry=value|...>] -P check_command.cmake
 #
+# OVERRIDES, separated by '|', are passed to the program as --set options.
 # EXPECTED_MESSAGE must appear in what the program printed; FORBIDDEN_DIRECTORY
 # must not exist afterwards (bad input leaves nothing behind); TRAJECTORY must
 # exist, have at least two data rows and contain no 'nan' or 'inf'.
 file(REMOVE_RECURSE ${WORK_DIRECTORY})
 file(MAKE_DIRECTORY ${WORK_DIRECTORY})
-execute_process(COMMAND ${PROGRAM} ${PARAMETER_FILE}
+set(arguments)
+if(DEFINED OVERRIDES)
+  string(REPLACE "|" ";" overrides "${OVERRIDES}")
+  foreach(override IN LISTS overrides)
+    list(APPEND arguments --set "${override}")
+  endforeach()
+endif()
+execute_process(COMMAND ${PROGRAM} ${PARAMETER_FILE} ${arguments}
                 WORKING_DIRECTORY ${WORK_DIRECTORY}
                 RESULT_VARIABLE exit_code
                 OUTPUT_VARIABLE output
