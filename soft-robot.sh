@@ -7,7 +7,8 @@
 #   ./soft-robot.sh test       install what is missing, build in Debug (deal.II's
 #                              internal checks on), run the whole test suite
 #   ./soft-robot.sh validate   build in Release, run all thirty bellows scenes
-#                              (two at a time) and write doc/validation.md
+#                              (SOFT_ROBOT_JOBS at a time, default 2) and
+#                              write doc/validation.md
 #
 # Build directories: build-release/ and build-debug/ beside this script.
 set -euo pipefail
@@ -74,8 +75,9 @@ case "${1:-}" in
       echo "$name: $(cat "output/$name/wall_seconds") s"
     }
     export -f run_scene
+    export SOFT_ROBOT_JOBS=${SOFT_ROBOT_JOBS:-2}
     ls parameters/bellows/*.prm | grep -v /protocol_ \
-      | xargs -P 2 -I {} bash -c 'run_scene {}'
+      | xargs -P "$SOFT_ROBOT_JOBS" -I {} bash -c 'run_scene {}'
     /usr/bin/python3 doc/validation_report.py output doc
     echo "Wrote doc/validation.md"
     ;;

@@ -44,13 +44,24 @@ namespace
   using namespace SoftRobot;
   using namespace dealii;
 
-  // The total force of the small tip loads, mN (kg mm/s^2): 0.5 % of the
-  // weight of actuator and block. It moves the tip by a few hundredths of a
-  // millimetre axially and a few tenths laterally: small enough for the
-  // response to be linear, large enough to be far above the solver's
-  // tolerance. The load is applied with both signs and the stiffness taken
-  // from the difference, which removes the quadratic part of the response.
-  constexpr double probe_force = 10.;
+  // The total force of the small tip loads, mN (kg mm/s^2). At the hanging
+  // equilibrium 10 mN, 0.5 % of the weight of actuator and block: it moves
+  // the tip by at most about a millimetre (laterally, Ecoflex), small
+  // against the motion and far above the solver's tolerance. The unloaded
+  // body is much softer laterally (it lacks the pendulum stiffness of its
+  // weight), and its stiffness is proportional to the shear modulus: there
+  // the load is 1e-3 mN per kPa of shear modulus, which moves the tip by
+  // about 0.1 mm laterally for every silicone. The load is applied with
+  // both signs and the stiffness taken from the difference, which removes
+  // the quadratic part of the response.
+  double
+  probe_force(const Parameters::AllParameters &parameters)
+  {
+    const bool unloaded = parameters.gravity[0] == 0. &&
+                          parameters.gravity[1] == 0. &&
+                          parameters.gravity[2] == 0.;
+    return unloaded ? 1e-3 * parameters.by_id.at(1).shear_modulus : 10.;
+  }
 
   // The root of value(x) = target for a positive x and a value that grows
   // with x like a power: a secant iteration on the logarithms, started from
@@ -140,13 +151,14 @@ namespace
                 const unsigned int                               component,
                 const std::function<std::string(const double)> &traction_of)
   {
+    const double force = probe_force(parameters);
     const double plus =
       tip_displacement<dim>(
-        tip_load_problem(parameters, traction_of(probe_force)))[component];
+        tip_load_problem(parameters, traction_of(force)))[component];
     const double minus =
       tip_displacement<dim>(
-        tip_load_problem(parameters, traction_of(-probe_force)))[component];
-    return 2. * probe_force / (plus - minus);
+        tip_load_problem(parameters, traction_of(-force)))[component];
+    return 2. * force / (plus - minus);
   }
 
   std::string
