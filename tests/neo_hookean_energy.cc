@@ -558,14 +558,16 @@ TYPED_TEST(NeoHookeanEnergyTest, PositiveSemidefinitePartOfTangent)
         for (unsigned int k = 0; k < 50; ++k)
           {
             const SymmetricTensor<2, dim> E = random_strain();
-            const double full = E * CC * E, plus = E * CC_plus * E;
+            // (Contracted as E * (CC * E): deal.II 9.4 cannot contract a
+            // symmetric rank-2 tensor from the left in 1D.)
+            const double full = E * (CC * E), plus = E * (CC_plus * E);
             found_indefinite = found_indefinite || full < -1e-10 * scale;
             EXPECT_GE(plus, -1e-10 * scale * E.norm() * E.norm());
             EXPECT_GE(plus - full, -1e-10 * scale * E.norm() * E.norm());
             // Major symmetry.
             const SymmetricTensor<2, dim> G = random_strain();
-            EXPECT_NEAR(E * CC_plus * G,
-                        G * CC_plus * E,
+            EXPECT_NEAR(E * (CC_plus * G),
+                        G * (CC_plus * E),
                         1e-10 * scale * E.norm() * G.norm());
           }
       }
