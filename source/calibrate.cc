@@ -207,13 +207,20 @@ namespace
 
   // The 2D strip's mesh: the cells along x of the scene file, four cells
   // across the width w, centred on the axis.
+  //
+  // deal.II checks (in its Debug build) that the steps add up to the extent
+  // to 1e-12; with 17 digits (the default) the numbers are those of the
+  // computation exactly, w/4 and w/2 being exact binary fractions of w. A
+  // width rounded to micrometres is written exactly with 10.
   std::string
-  strip_generator_arguments(const std::string &x_steps, const double width)
+  strip_generator_arguments(const std::string &x_steps,
+                            const double       width,
+                            const int          digits = 17)
   {
-    const std::string quarter = number(width / 4., 10);
+    const std::string quarter = number(width / 4., digits);
     return x_steps + "; " + quarter + "," + quarter + "," + quarter + "," +
-           quarter + ": -15.25, " + number(-width / 2., 10) + ": 99.25, " +
-           number(width / 2., 10) + ": true";
+           quarter + ": -15.25, " + number(-width / 2., digits) + ": 99.25, " +
+           number(width / 2., digits) + ": true";
   }
 
   // The strip's width w from the arguments: the second coordinate of the
@@ -388,7 +395,7 @@ namespace
               << "  set Section = " << number(geometry.column_section, 5)
               << "   (Material 1 and 2)\nFor " << strip_scene << ":\n"
               << "  set Generator arguments = "
-              << strip_generator_arguments(x_steps, geometry.strip_width)
+              << strip_generator_arguments(x_steps, geometry.strip_width, 10)
               << "\n  set Section = " << number(geometry.strip_thickness, 5)
               << "   (Material 1 and 2)\n  set Function constants = "
                  "force=958.4, end_area="
