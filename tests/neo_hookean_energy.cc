@@ -221,6 +221,56 @@ TYPED_TEST(NeoHookeanEnergyTest, StressEqualsClosedForm)
 
 
 
+// @sect4{The fixed-size AD agrees with deal.II's AD helper}
+//
+// evaluate() seeds Sacado's fixed-size numbers itself and undoes the
+// factors of the symmetric storage by hand; evaluate_with_ad_helper()
+// leaves both to deal.II's Differentiation::AD::ScalarFunction with
+// dynamically sized numbers, and evaluate_stress() takes first derivatives
+// only. The same operations in the same order give the same numbers up to
+// a few units of round-off, so all components must agree to $10^{-13}$
+// relative to the largest one; a wrong factor of two in an off-diagonal
+// entry or a transposed index would be off by order one.
+TYPED_TEST(NeoHookeanEnergyTest, FixedSizeADEqualsADHelper)
+{
+  constexpr int               dim = TypeParam::value;
+  const NeoHookeanEnergy<dim> material(shear_modulus, bulk_modulus);
+
+  double worst_error = 0.;
+  for (const Tensor<2, dim> &F :
+       random_deformation_gradients<dim>(n_samples, 7))
+    {
+      MaterialResponse<dim> fast, helper, stress_only;
+      material.evaluate(displacement_gradient<dim>(F), fast);
+      material.evaluate_with_ad_helper(displacement_gradient<dim>(F), helper);
+      material.evaluate_stress(displacement_gradient<dim>(F), stress_only);
+
+      const double energy_error =
+        std::abs(fast.energy - helper.energy) / std::abs(helper.energy);
+      const double stress_error =
+        (fast.second_piola - helper.second_piola).norm() /
+        helper.second_piola.norm();
+      const double stress_only_error =
+        (stress_only.second_piola - helper.second_piola).norm() /
+        helper.second_piola.norm();
+      const double tangent_error =
+        (fast.material_tangent - helper.material_tangent).norm() /
+        helper.material_tangent.norm();
+      EXPECT_LE(energy_error, 1e-13) << "F = " << F;
+      EXPECT_LE(stress_error, 1e-13) << "F = " << F;
+      EXPECT_LE(stress_only_error, 1e-13) << "F = " << F;
+      EXPECT_LE(tangent_error, 1e-13) << "F = " << F;
+      EXPECT_NEAR(stress_only.energy, fast.energy, 1e-13 * std::abs(fast.energy));
+      worst_error = std::max(
+        {worst_error, energy_error, stress_error, tangent_error});
+    }
+  std::cout << "  dim = " << dim
+            << ": worst relative difference from the AD helper "
+            << worst_error << std::endl;
+}
+
+
+
 // @sect4{The AD tangent is the derivative of the stress}
 //
 // SoftRobot::first_piola_tangent() of the AD $\mathbf S$ and $\mathcal C$

@@ -78,9 +78,9 @@
 #define soft_robot_material_neo_hookean_energy_h
 
 #include <cmath>
+#include <type_traits>
 #include <deal.II/base/symmetric_tensor.h>
 #include <deal.II/base/tensor.h>
-#include <deal.II/differentiation/ad/ad_number_traits.h>
 
 namespace SoftRobot
 {
@@ -117,10 +117,26 @@ namespace SoftRobot
 
     // Energy, $\mathbf S$ and $\mathcal C$ at the displacement gradient
     // $\mathbf H = \mathbf F - \mathbf I$ (given as $\mathbf H$ so that
-    // small strains keep their digits), by automatic differentiation.
+    // small strains keep their digits), by automatic differentiation with
+    // Sacado's fixed-size forward numbers. This is what the solver calls.
     void
     evaluate(const Tensor<2, dim>  &displacement_gradient,
              MaterialResponse<dim> &response) const;
+
+    // Energy and $\mathbf S$ only, with first derivatives: for the
+    // residual evaluations that need no tangent. The material tangent of
+    // the response is left untouched.
+    void
+    evaluate_stress(const Tensor<2, dim>  &displacement_gradient,
+                    MaterialResponse<dim> &response) const;
+
+    // The same as evaluate(), through deal.II's Differentiation::AD helper
+    // with dynamically sized nested Sacado numbers. It is about fifteen
+    // times slower (it allocates memory for every derivative), and the
+    // tests use it as the independent reference for evaluate().
+    void
+    evaluate_with_ad_helper(const Tensor<2, dim>  &displacement_gradient,
+                            MaterialResponse<dim> &response) const;
 
     // The Green-Lagrange strain of a displacement gradient, without
     // forming $\mathbf F^T\mathbf F$.
@@ -201,11 +217,16 @@ namespace SoftRobot
 
   namespace internal
   {
+    // The value of a (possibly nested) forward-mode number: Sacado's
+    // numbers, static or dynamic, give their value by val().
     template <typename Number>
     double
     scalar_value(const Number &x)
     {
-      return Differentiation::AD::ADNumberTraits<Number>::get_scalar_value(x);
+      if constexpr (std::is_arithmetic_v<Number>)
+        return x;
+      else
+        return scalar_value(x.val());
     }
 
     // $k(d) = d - \ln(1+d)$, $g(d) = (1+d)^{-1/3} - 1$ and $h(d) = 3g(d) +
@@ -279,7 +300,11 @@ namespace SoftRobot
     if constexpr (dim == 3)
       {
         const Number I1 = trace(E);
-        const Number I2 = 0.5 * (I1 * I1 - E * E);
+        // the sum of the principal minors, written by components because
+        // the static Sacado numbers have no tensor contraction in deal.II
+        const Number I2 = E[0][0] * E[1][1] + E[1][1] * E[2][2] +
+                          E[2][2] * E[0][0] - E[0][1] * E[0][1] -
+                          E[1][2] * E[1][2] - E[0][2] * E[0][2];
         const Number I3 = determinant(E);
         const Number d  = 2. * I1 + 4. * I2 + 8. * I3;
         const Number g  = internal::inverse_cube_root_minus_one(d);

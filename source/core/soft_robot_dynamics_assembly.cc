@@ -15,17 +15,28 @@ namespace SoftRobot
   // At each quadrature point the deformation gradient $\mathbf F =
   // \mathbf I + \nabla_0\mathbf u$ gives, through the material's automatic
   // derivatives, the stress $\mathbf S$ and the tangent $\mathcal C$. For a
-  // test function $\mathbf N_i$ with $\delta\mathbf E_i = \mathrm{sym}(
-  // \mathbf F^T\nabla_0\mathbf N_i)$ the internal force and the tangent
-  // stiffness are
+  // test function $\mathbf N_i = \varphi_i\mathbf e_{c_i}$ the variation of
+  // the strain is
   // @f[
-  //   f_i = \int \delta\mathbf E_i : \mathbf S\;dV,\qquad
+  //   \delta\mathbf E_i = \mathrm{sym}(\mathbf F^T\nabla_0\mathbf N_i)
+  //   = \mathrm{sym}(\mathbf f_{c_i}\otimes\nabla_0\varphi_i),
+  // @f]
+  // with $\mathbf f_c$ the row $c$ of $\mathbf F$, and the internal force
+  // and the tangent stiffness are
+  // @f[
+  //   f_i = \int \delta\mathbf E_i : \mathbf S\;dV
+  //       = \int \mathbf f_{c_i}\cdot\mathbf S\,\nabla_0\varphi_i\;dV,\qquad
   //   K_{ij} = \int \delta\mathbf E_i : \mathcal C : \delta\mathbf E_j
-  //          + \nabla_0\mathbf N_i : \nabla_0\mathbf N_j\,\mathbf S \; dV,
+  //          + \delta_{c_ic_j}\,\nabla_0\varphi_i\cdot\mathbf S\,
+  //            \nabla_0\varphi_j \; dV,
   // @f]
   // the first term of $K_{ij}$ being the material part, which times
   // $\zeta$ is the damping matrix of this state (see the class
   // documentation); it is assembled into `next_damping_matrix` alongside.
+  // The gradients $\nabla_0\varphi_i$ and weights come from the cache of
+  // setup_cell_geometry(). Without the matrix only first derivatives of the
+  // energy are computed (NeoHookeanEnergy::evaluate_stress()), which costs
+  // a sixth of the full evaluation.
   //
   // A quadrature point with $\det\mathbf F\le 0$ has no physical meaning:
   // it is reported (on all processes), and the caller rejects the state.
@@ -36,7 +47,9 @@ namespace SoftRobot
     const bool                           with_matrix,
     TrilinosWrappers::MPI::Vector       &internal_force)
   {
-    TimerOutput::Scope timer_section(computing_timer, "Assemble system");
+    TimerOutput::Scope timer_section(computing_timer,
+                                     with_matrix ? "Assemble system" :
+                                                   "Assemble residual");
 
     TrilinosWrappers::MPI::Vector u_ghosted(locally_owned_dofs,
                                             locally_relevant_dofs,
@@ -50,111 +63,125 @@ namespace SoftRobot
       next_damping_matrix = 0.;
     internal_force = 0.;
 
-    FEValues<dim>                    fe_values(*mapping,
-                            *fe,
-                            *cell_quadrature,
-                            update_gradients | update_JxW_values);
-    const FEValuesExtractors::Vector displacements(0);
-    const unsigned int               dofs_per_cell = fe->n_dofs_per_cell();
-    const unsigned int               n_q_points    = cell_quadrature->size();
+    const CellGeometry &geometry      = cell_geometry;
+    const unsigned int  dofs_per_cell = geometry.dofs_per_cell;
+    const unsigned int  n_q_points    = geometry.n_q_points;
+    const std::vector<unsigned int> &component = geometry.components;
 
     FullMatrix<double> cell_matrix(dofs_per_cell, dofs_per_cell);
     FullMatrix<double> cell_damping(dofs_per_cell, dofs_per_cell);
     Vector<double>     cell_force(dofs_per_cell);
+    std::vector<double>                  cell_u(dofs_per_cell);
     std::vector<types::global_dof_index> dof_indices(dofs_per_cell);
-    std::vector<Tensor<2, dim>>          grad_u(n_q_points);
-    std::vector<Tensor<2, dim>>          grad_N(dofs_per_cell);
     std::vector<SymmetricTensor<2, dim>> delta_E(dofs_per_cell);
     MaterialResponse<dim>                response;
 
     AssemblyResult result;
-    for (const auto &cell : dof_handler.active_cell_iterators())
-      if (cell->is_locally_owned())
-        {
-          fe_values.reinit(cell);
-          fe_values[displacements].get_function_gradients(u_ghosted, grad_u);
-          const NeoHookeanEnergy<dim> &material =
-            materials.at(cell->material_id());
-          const double zeta    = material_of(cell).damping_zeta;
-          const double section = material_of(cell).section;
+    for (unsigned int cell = 0; cell < geometry.n_cells; ++cell)
+      {
+        const auto first_dof =
+          geometry.dof_indices.begin() + cell * dofs_per_cell;
+        std::copy(first_dof, first_dof + dofs_per_cell, dof_indices.begin());
+        for (unsigned int i = 0; i < dofs_per_cell; ++i)
+          cell_u[i] = u_ghosted(dof_indices[i]);
+        const NeoHookeanEnergy<dim> &material = *geometry.material[cell];
+        const double                 zeta     = geometry.damping_zeta[cell];
 
-          cell_matrix  = 0.;
-          cell_damping = 0.;
-          cell_force   = 0.;
-          for (unsigned int q = 0; q < n_q_points; ++q)
-            {
-              Tensor<2, dim> F = grad_u[q];
-              for (unsigned int d = 0; d < dim; ++d)
-                F[d][d] += 1.;
-              const double J      = determinant(F);
-              result.min_jacobian = std::min(result.min_jacobian, J);
-              if (!(J > 0.))
-                {
-                  result.inverted_point_found = true;
-                  continue;
-                }
-              material.evaluate(grad_u[q], response);
-              const double JxW = fe_values.JxW(q) * section;
-              result.strain_energy += response.energy * JxW;
+        if (with_matrix)
+          {
+            cell_matrix  = 0.;
+            cell_damping = 0.;
+          }
+        cell_force = 0.;
+        for (unsigned int q = 0; q < n_q_points; ++q)
+          {
+            const unsigned int    point = cell * n_q_points + q;
+            const Tensor<1, dim> *grad_phi =
+              &geometry.shape_gradients[point * dofs_per_cell];
+            const double JxW = geometry.JxW[point];
 
-              for (unsigned int i = 0; i < dofs_per_cell; ++i)
-                {
-                  grad_N[i]  = fe_values[displacements].gradient(i, q);
-                  delta_E[i] = symmetrize(transpose(F) * grad_N[i]);
-                  cell_force(i) += (delta_E[i] * response.second_piola) * JxW;
-                }
+            Tensor<2, dim> H;
+            for (unsigned int i = 0; i < dofs_per_cell; ++i)
+              H[component[i]] += cell_u[i] * grad_phi[i];
+            Tensor<2, dim> F = H;
+            for (unsigned int d = 0; d < dim; ++d)
+              F[d][d] += 1.;
+            const double J      = determinant(F);
+            result.min_jacobian = std::min(result.min_jacobian, J);
+            if (!(J > 0.))
+              {
+                result.inverted_point_found = true;
+                continue;
+              }
+            if (with_matrix)
+              material.evaluate(H, response);
+            else
+              material.evaluate_stress(H, response);
+            result.strain_energy += response.energy * JxW;
 
-              // The damping uses the positive semi-definite part of the
-              // material tangent (see positive_semidefinite_part()).
-              SymmetricTensor<4, dim> damping_tangent;
-              if (with_damping && zeta > 0.)
-                damping_tangent =
-                  positive_semidefinite_part(response.material_tangent);
-              if (with_matrix)
-                for (unsigned int i = 0; i < dofs_per_cell; ++i)
+            const SymmetricTensor<2, dim> &S = response.second_piola;
+            for (unsigned int i = 0; i < dofs_per_cell; ++i)
+              {
+                const Tensor<1, dim> f_c = F[component[i]];
+                cell_force(i) += (f_c * (S * grad_phi[i])) * JxW;
+                if (with_matrix)
+                  delta_E[i] = symmetrize(outer_product(f_c, grad_phi[i]));
+              }
+            if (!with_matrix)
+              continue;
+
+            // The damping uses the positive semi-definite part of the
+            // material tangent (see positive_semidefinite_part()).
+            const bool              damped = with_damping && zeta > 0.;
+            SymmetricTensor<4, dim> damping_tangent;
+            if (damped)
+              damping_tangent =
+                positive_semidefinite_part(response.material_tangent);
+            for (unsigned int i = 0; i < dofs_per_cell; ++i)
+              {
+                const SymmetricTensor<2, dim> C_dE_i =
+                  response.material_tangent * delta_E[i];
+                const Tensor<1, dim> S_grad_phi_i = S * grad_phi[i];
+                for (unsigned int j = 0; j <= i; ++j)
                   {
-                    const SymmetricTensor<2, dim> C_dE_i =
-                      response.material_tangent * delta_E[i];
+                    double value = C_dE_i * delta_E[j];
+                    if (component[i] == component[j])
+                      value += S_grad_phi_i * grad_phi[j];
+                    cell_matrix(i, j) += value * JxW;
+                  }
+                if (damped)
+                  {
                     const SymmetricTensor<2, dim> D_dE_i =
                       damping_tangent * delta_E[i];
-                    const Tensor<2, dim> grad_N_i_S =
-                      grad_N[i] * Tensor<2, dim>(response.second_piola);
                     for (unsigned int j = 0; j <= i; ++j)
-                      {
-                        const double material_part =
-                          (C_dE_i * delta_E[j]) * JxW;
-                        cell_matrix(i, j) +=
-                          material_part +
-                          scalar_product(grad_N_i_S, grad_N[j]) * JxW;
-                        cell_damping(i, j) +=
-                          zeta * (D_dE_i * delta_E[j]) * JxW;
-                      }
+                      cell_damping(i, j) +=
+                        zeta * (D_dE_i * delta_E[j]) * JxW;
                   }
-            }
-          if (with_matrix)
-            for (unsigned int i = 0; i < dofs_per_cell; ++i)
-              for (unsigned int j = i + 1; j < dofs_per_cell; ++j)
-                {
-                  cell_matrix(i, j)  = cell_matrix(j, i);
-                  cell_damping(i, j) = cell_damping(j, i);
-                }
+              }
+          }
+        if (with_matrix)
+          for (unsigned int i = 0; i < dofs_per_cell; ++i)
+            for (unsigned int j = i + 1; j < dofs_per_cell; ++j)
+              {
+                cell_matrix(i, j)  = cell_matrix(j, i);
+                cell_damping(i, j) = cell_damping(j, i);
+              }
 
-          cell->get_dof_indices(dof_indices);
-          if (with_matrix)
-            constraints.distribute_local_to_global(cell_matrix,
-                                                   cell_force,
-                                                   dof_indices,
-                                                   system_matrix,
-                                                   internal_force);
-          else
-            constraints.distribute_local_to_global(cell_force,
-                                                   dof_indices,
-                                                   internal_force);
-          if (with_damping)
-            constraints.distribute_local_to_global(cell_damping,
-                                                   dof_indices,
-                                                   next_damping_matrix);
-        }
+        if (with_matrix)
+          constraints.distribute_local_to_global(cell_matrix,
+                                                 cell_force,
+                                                 dof_indices,
+                                                 system_matrix,
+                                                 internal_force);
+        else
+          constraints.distribute_local_to_global(cell_force,
+                                                 dof_indices,
+                                                 internal_force);
+        if (with_damping)
+          constraints.distribute_local_to_global(cell_damping,
+                                                 dof_indices,
+                                                 next_damping_matrix);
+      }
 
     if (with_matrix)
       system_matrix.compress(VectorOperation::add);

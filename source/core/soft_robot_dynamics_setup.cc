@@ -475,11 +475,58 @@ namespace SoftRobot
     }
 
     assemble_mass_matrix();
+    setup_cell_geometry();
 
     pcout << "Degrees of freedom: " << dof_handler.n_dofs() << " ("
           << fe->get_name() << ", "
           << Utilities::MPI::n_mpi_processes(mpi_communicator)
           << " MPI process(es))" << std::endl;
+  }
+
+
+
+  // @sect4{SoftRobotDynamics::setup_cell_geometry}
+  //
+  // The data described at the declaration of CellGeometry, in the order in
+  // which the loop over the locally owned cells visits them.
+  template <int dim>
+  void
+  SoftRobotDynamics<dim>::setup_cell_geometry()
+  {
+    CellGeometry &geometry = cell_geometry;
+    geometry               = CellGeometry();
+    geometry.dofs_per_cell = fe->n_dofs_per_cell();
+    geometry.n_q_points    = cell_quadrature->size();
+    for (unsigned int i = 0; i < geometry.dofs_per_cell; ++i)
+      geometry.components.push_back(fe->system_to_component_index(i).first);
+
+    FEValues<dim> fe_values(*mapping,
+                            *fe,
+                            *cell_quadrature,
+                            update_gradients | update_JxW_values);
+    std::vector<types::global_dof_index> dof_indices(geometry.dofs_per_cell);
+    for (const auto &cell : dof_handler.active_cell_iterators())
+      if (cell->is_locally_owned())
+        {
+          fe_values.reinit(cell);
+          cell->get_dof_indices(dof_indices);
+          geometry.dof_indices.insert(geometry.dof_indices.end(),
+                                      dof_indices.begin(),
+                                      dof_indices.end());
+          const Parameters::Material &material = material_of(cell);
+          for (unsigned int q = 0; q < geometry.n_q_points; ++q)
+            {
+              geometry.JxW.push_back(fe_values.JxW(q) * material.section);
+              for (unsigned int i = 0; i < geometry.dofs_per_cell; ++i)
+                geometry.shape_gradients.push_back(
+                  fe_values.shape_grad_component(i,
+                                                 q,
+                                                 geometry.components[i]));
+            }
+          geometry.material.push_back(&materials.at(cell->material_id()));
+          geometry.damping_zeta.push_back(material.damping_zeta);
+          ++geometry.n_cells;
+        }
   }
 
 
@@ -646,6 +693,7 @@ namespace SoftRobot
   template void SoftRobotDynamics<dim>::make_grid();                        \
   template void SoftRobotDynamics<dim>::setup_system();                     \
   template void SoftRobotDynamics<dim>::assemble_mass_matrix();             \
+  template void SoftRobotDynamics<dim>::setup_cell_geometry();              \
   template const Parameters::Material &SoftRobotDynamics<dim>::material_of( \
     const typename DoFHandler<dim>::active_cell_iterator &) const;          \
   template void SoftRobotDynamics<dim>::run();                              \

@@ -1,0 +1,648 @@
+#!/usr/bin/env python3
+"""Run the CalculiX peer of the speed benchmark's headline case.
+
+The headline case is parameters/bellows/vertical_ds20_3d.prm (with the
+files it includes, protocol_vertical_3d.prm and ../silicones.prm): the
+quarter model of the bellows actuator on the coarse mesh of linear
+tetrahedra, Dragon Skin 20 with the baseline shear modulus, hanging from
+its base under gravity, released at t = 0 from a "hold" on the tip block
+and ringing for 5.25 s. This script builds the same case for CalculiX
+(ccx), runs it, and reports ccx's wall time and the frequency of the tip.
+
+Usage (from anywhere; paths default to the repository of this script):
+
+    python3 doc/performance/calculix_peer.py                  # full run
+    python3 doc/performance/calculix_peer.py --end-time 0.5   # quick try
+    python3 doc/performance/calculix_peer.py --threads 2
+    python3 doc/performance/calculix_peer.py \
+        --compare output/vertical_ds20_3d/tip_trajectory.csv
+
+Steps:
+  1. read the gmsh MSH 2.2 mesh (no gmsh module needed) and write
+     WORKDIR/job.inp: C3D4 elements, one element set per material, node
+     sets for the constrained boundaries, the materials, a static NLGEOM
+     step under gravity and the hold, and a *DYNAMIC NLGEOM step (HHT,
+     ALPHA=-0.25, fixed increments) with the hold removed;
+  2. run `ccx -i job` in WORKDIR, timing it (wall clock) and recording the
+     peak resident memory of the child process;
+  3. read the tip motion from WORKDIR/job.dat and compute its peak
+     frequency (FFT with zero padding and parabolic interpolation of the
+     magnitude peak) and, as checks, the frequency from zero crossings and
+     a damping ratio from the decay of the cycle amplitudes;
+  4. print a summary and write WORKDIR/calculix_peer.json (and the tip
+     history WORKDIR/tip_history.csv); with --compare, put our
+     tip_trajectory.csv through the same estimators.
+
+Units are those of the scene: mm, kg, s (force mN, stress kPa, density
+kg/mm^3, gravity 9810 mm/s^2).
+
+Differences from our model (also written to the JSON file as caveats):
+  * Material law. Our energy is
+        Psi = mu/2 (J^(-2/3) I1 - 3) + kappa/4 (J^2 - 1 - 2 ln J).
+    By default (--law arruda-boyce) the script uses ccx's ARRUDA-BOYCE
+    potential
+        U = mu {1/2 (I1bar - 3) + 1/(20 lm^2) (I1bar^2 - 9) + ...}
+            + 1/D ((J^2 - 1)/2 - ln J)
+    with a locking stretch lm = 1e4 (the terms beyond the first are then
+    below 1e-8 relative) and D = 2/kappa: the same energy as ours. With
+    --law neo-hooke it uses ccx's NEO HOOKE potential
+        U = C10 (I1bar - 3) + (J - 1)^2 / D1,  C10 = mu/2, D1 = 2/kappa,
+    which has the same shear and small-strain bulk modulus but a
+    different volumetric term at finite strain.
+  * Damping. ccx 2.20 has Rayleigh damping C = alpha M + beta K for
+    implicit *DYNAMIC steps (*DAMPING, ALPHA=, BETA=; it must follow a
+    *MATERIAL card but is global: "only one *DAMPING card ... applies to
+    the whole model"). So beta = zeta of the silicone also damps the tip
+    block, which carries no damping in our model. Stiffness-proportional
+    damping does not act on rigid-body motion, and the block moves nearly
+    rigidly (it is 86 times stiffer than the silicone), so this should
+    matter little for the tip.
+  * Hold load. Our hold is a nominal (dead) traction on the bottom face
+    of the block. By default (--hold-load pressure) it is a *DLOAD
+    pressure on those element faces, which ccx applies, with NLGEOM, on
+    the deformed faces (a follower load); the stiff block barely deforms
+    or rotates, so the two agree closely. --hold-load cload applies the
+    consistent nodal forces of the nominal traction (*CLOAD, dead loads)
+    instead, exactly our load.
+  * Release. Our hold acts for t <= 0, so the HHT-weighted external force
+    of our first time step still carries -alpha = 25 % of it; in ccx the
+    load of a step is applied in full from its start.
+  * Elements. ccx's C3D4 are linear tetrahedra as ours; the mass matrix
+    and the gravity load are ccx's own (not necessarily the same
+    quadrature as ours).
+  * Tip quantity. We track the centre of mass of material 2. Here the tip
+    displacement is the volume-weighted mean displacement of material 2,
+    sum over its elements of V_e times the mean of the element's four
+    nodal displacements, divided by the volume: with linear elements and
+    a uniform density this is the displacement of its centre of mass
+    exactly. (The plain mean over its nodes and the node on the axis at
+    the bottom face are written to tip_history.csv as well.)
+"""
+import argparse
+import json
+import math
+import os
+import re
+import resource
+import shutil
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+import numpy as np
+
+REPOSITORY = Path(__file__).resolve().parents[2]
+
+# ---------------------------------------------------------------------------
+# The case: numbers of parameters/bellows/vertical_ds20_3d.prm and the files
+# it includes (units mm, kg, s).
+# ---------------------------------------------------------------------------
+CASE = {
+    "scene": "parameters/bellows/vertical_ds20_3d.prm",
+    "mesh": "meshes/bellows_quarter_coarse.msh",
+    "model_fraction": 0.25,  # quarter model: masses are divided by 4
+    "gravity": 9810.0,  # mm/s^2 along +x (the axis points down)
+    # Material 1, Dragon Skin 20, baseline set of ../silicones.prm:
+    # mu = Neo-Hookean C1 = 116 kPa, kappa = 100 mu, zeta = xi / (pi f)
+    # with the experiment-1 frequency f = 4.20 Hz and damping ratio 0.021.
+    "silicone": {
+        "mu": 116.0,
+        "kappa": 100 * 116.0,
+        "mass": 0.0766,  # kg, whole body
+        "zeta": 0.021 / (math.pi * 4.20),  # s
+    },
+    # Material 2, the tip block (protocol_vertical_3d.prm), no damping.
+    "block": {"mu": 1e4, "kappa": 2e4, "mass": 0.1188},
+    # Hold: until t = 0 a traction of 1.1397 kPa in -x on the faces of
+    # boundary 5 with x > 99.2 (the bottom face of the block).
+    "hold_traction": 1.1397,
+    "hold_boundary": 5,
+    "hold_x_min": 99.2,
+    # Constraints: base clamped, y = 0 and z = 0 symmetry planes.
+    "fixed": {1: (1, 3), 3: (2, 2), 4: (3, 3)},  # boundary id: dof range
+    "time_step": 0.01,
+    "end_time": 5.25,
+    "alpha": -0.25,
+    # Our result for this case (output/vertical_ds20_3d/tip_spectrum.csv).
+    "reference": {"f_peak_Hz": 3.534, "xi_modal_fit": 0.017, "u_x_t0": 8.81},
+}
+
+ARRUDA_BOYCE_LOCKING_STRETCH = 1e4  # large: the potential is neo-Hookean
+
+
+# ---------------------------------------------------------------------------
+# Mesh
+# ---------------------------------------------------------------------------
+def read_msh(path):
+    """Read a gmsh MSH 2.2 ASCII file.
+
+    Returns (node_ids, coordinates, tets, triangles): node_ids and
+    coordinates as arrays, tets and triangles as dicts from the physical
+    tag to an (n, 4) or (n, 3) array of node ids.
+    """
+    with open(path) as stream:
+        lines = stream.read().splitlines()
+
+    def section(name):
+        start = lines.index("$" + name)
+        count = int(lines[start + 1])
+        return lines[start + 2 : start + 2 + count]
+
+    version, file_type = lines[lines.index("$MeshFormat") + 1].split()[:2]
+    if not version.startswith("2") or file_type != "0":
+        sys.exit("%s: expected gmsh MSH 2.x ASCII, found version %s, type %s" % (path, version, file_type))
+
+    rows = [line.split() for line in section("Nodes")]
+    node_ids = np.array([int(row[0]) for row in rows])
+    coordinates = np.array([[float(v) for v in row[1:4]] for row in rows])
+
+    tets, triangles = {}, {}
+    for line in section("Elements"):
+        values = [int(v) for v in line.split()]
+        element_type, n_tags = values[1], values[2]
+        physical = values[3]
+        nodes = values[3 + n_tags :]
+        if element_type == 4:  # 4-node tetrahedron
+            tets.setdefault(physical, []).append(nodes)
+        elif element_type == 2:  # 3-node triangle
+            triangles.setdefault(physical, []).append(nodes)
+    tets = {tag: np.array(v) for tag, v in tets.items()}
+    triangles = {tag: np.array(v) for tag, v in triangles.items()}
+    return node_ids, coordinates, tets, triangles
+
+
+def tet_volumes(points, tets):
+    """Signed volumes of the tetrahedra (positive for ccx's C3D4 ordering)."""
+    p = [points[tets[:, k]] for k in range(4)]
+    return np.einsum("ij,ij->i", np.cross(p[1] - p[0], p[2] - p[0]), p[3] - p[0]) / 6.0
+
+
+def hold_faces(points, index, block_tets, triangles, x_min):
+    """The faces of block tetrahedra under the hold traction.
+
+    Returns a list of (element position in block_tets, ccx face number,
+    triangle node ids, triangle area, outward unit normal).
+    ccx's C3D4 faces (manual, *DLOAD): 1: 1-2-3, 2: 1-4-2, 3: 2-4-3,
+    4: 3-4-1, i.e. face number by the local node *not* on the face.
+    """
+    face_opposite = {3: 1, 2: 2, 0: 3, 1: 4}
+    by_nodes = {}
+    for e, tet in enumerate(block_tets):
+        for local in range(4):
+            face = frozenset(n for k, n in enumerate(tet) if k != local)
+            by_nodes[face] = (e, face_opposite[local])
+    faces = []
+    for tri in triangles:
+        x = points[[index[n] for n in tri]]
+        if np.all(x[:, 0] > x_min):
+            e, number = by_nodes[frozenset(tri)]
+            normal = np.cross(x[1] - x[0], x[2] - x[0])
+            area = 0.5 * np.linalg.norm(normal)
+            # orient the normal outwards: away from the element's 4th node
+            centre = points[[index[n] for n in block_tets[e]]].mean(axis=0)
+            normal /= 2 * area
+            if np.dot(normal, x.mean(axis=0) - centre) < 0:
+                normal = -normal
+            faces.append((e, number, tri, area, normal))
+    return faces
+
+
+def build_model(mesh_path):
+    """Everything the input deck and the evaluation need from the mesh."""
+    node_ids, points, tets, triangles = read_msh(mesh_path)
+    index = {n: k for k, n in enumerate(node_ids)}
+    as_index = np.vectorize(index.get)
+
+    model = {"node_ids": node_ids, "points": points, "sets": {}}
+    elements, first = {}, 1
+    for tag, name in ((1, "SILICONE"), (2, "BLOCK")):
+        conn = tets[tag].copy()
+        volume = tet_volumes(points, as_index(conn))
+        flipped = volume < 0  # ccx needs positive volumes: swap two nodes
+        conn[flipped, 1], conn[flipped, 2] = conn[flipped, 2], conn[flipped, 1].copy()
+        elements[name] = {
+            "ids": np.arange(first, first + len(conn)),
+            "conn": conn,
+            "volumes": np.abs(volume),
+        }
+        first += len(conn)
+    model["elements"] = elements
+
+    for boundary in CASE["fixed"]:
+        model["sets"]["NB%d" % boundary] = np.unique(triangles[boundary])
+
+    block = elements["BLOCK"]
+    model["hold"] = hold_faces(points, index, block["conn"], triangles[CASE["hold_boundary"]], CASE["hold_x_min"])
+
+    # Tip: all nodes of the block, weighted so that the weighted sum of
+    # nodal displacements is the block's mean displacement (V_e/4 per node
+    # and element, divided by the block's volume).
+    tip_nodes = np.unique(block["conn"])
+    weights = dict.fromkeys(tip_nodes.tolist(), 0.0)
+    for conn, volume in zip(block["conn"], block["volumes"]):
+        for n in conn:
+            weights[n] += volume / 4
+    model["tip_nodes"] = tip_nodes
+    model["tip_weights"] = np.array([weights[n] for n in tip_nodes]) / block["volumes"].sum()
+    # the node on the axis (y = z = 0) in the bottom face of the block
+    p = points[as_index(tip_nodes)]
+    on_axis = np.nonzero(np.abs(p[:, 1]) + np.abs(p[:, 2]) < 1e-9)[0]
+    model["axis_node"] = int(tip_nodes[on_axis[np.argmax(p[on_axis, 0])]])
+    return model
+
+
+# ---------------------------------------------------------------------------
+# Input deck
+# ---------------------------------------------------------------------------
+def id_lines(ids, per_line=16):
+    ids = list(ids)
+    return "\n".join(", ".join(str(i) for i in ids[k : k + per_line]) for k in range(0, len(ids), per_line))
+
+
+def material_cards(name, mu, kappa, density, law):
+    if law == "arruda-boyce":
+        hyper = "*HYPERELASTIC, ARRUDA-BOYCE\n%.10g, %.10g, %.10g\n" % (mu, ARRUDA_BOYCE_LOCKING_STRETCH, 2.0 / kappa)
+    else:
+        hyper = "*HYPERELASTIC, NEO HOOKE\n%.10g, %.10g\n" % (mu / 2.0, 2.0 / kappa)
+    return "*MATERIAL, NAME=%s\n%s*DENSITY\n%.10g\n" % (name, hyper, density)
+
+
+def write_input(path, model, options, densities):
+    points, node_ids = model["points"], model["node_ids"]
+    out = ["** CalculiX peer of %s, written by doc/performance/calculix_peer.py" % CASE["scene"]]
+    out.append("** units: mm, kg, s (force mN, stress kPa)")
+    out.append("*NODE, NSET=NALL")
+    # ccx reads numbers in fields of 20 characters: 12 digits fit
+    out += ["%d, %.12g, %.12g, %.12g" % (n, *x) for n, x in zip(node_ids, points)]
+    for name, block in model["elements"].items():
+        out.append("*ELEMENT, TYPE=C3D4, ELSET=%s" % name)
+        out += ["%d, %d, %d, %d, %d" % (e, *conn) for e, conn in zip(block["ids"], block["conn"])]
+    out.append("*ELSET, ELSET=EALL\nSILICONE, BLOCK")
+    for name, nodes in model["sets"].items():
+        out.append("*NSET, NSET=%s\n%s" % (name, id_lines(nodes)))
+    out.append("*NSET, NSET=NTIP\n%s" % id_lines(model["tip_nodes"]))
+
+    # hold faces: one element set per ccx face number (for *DLOAD), or the
+    # consistent nodal forces of the nominal traction (for *CLOAD)
+    block_ids = model["elements"]["BLOCK"]["ids"]
+    hold_sets = {}
+    for e, number, _, _, _ in model["hold"]:
+        hold_sets.setdefault(number, []).append(block_ids[e])
+    for number, ids in sorted(hold_sets.items()):
+        out.append("*ELSET, ELSET=HOLD%d\n%s" % (number, id_lines(ids)))
+    hold_forces = {}
+    for _, _, tri, area, normal in model["hold"]:
+        for n in tri:  # -traction * normal, a third of the face per node
+            hold_forces[n] = hold_forces.get(n, 0.0) - CASE["hold_traction"] * area / 3 * normal
+
+    silicone, block = CASE["silicone"], CASE["block"]
+    out.append(material_cards("SILICONE", silicone["mu"], silicone["kappa"], densities["SILICONE"], options.law).rstrip())
+    if options.damping:
+        # global in ccx 2.20 (see the module's docstring); must follow *MATERIAL
+        out.append("*DAMPING, ALPHA=0., BETA=%.10g" % silicone["zeta"])
+    out.append(material_cards("BLOCK", block["mu"], block["kappa"], densities["BLOCK"], options.law).rstrip())
+    out.append("*SOLID SECTION, ELSET=SILICONE, MATERIAL=SILICONE")
+    out.append("*SOLID SECTION, ELSET=BLOCK, MATERIAL=BLOCK")
+
+    out.append("*BOUNDARY")
+    for boundary, (first, last) in CASE["fixed"].items():
+        out.append("NB%d, %d, %d" % (boundary, first, last))
+
+    gravity = "EALL, GRAV, %.10g, 1., 0., 0." % CASE["gravity"]
+
+    def hold(scale):
+        if options.hold_load == "pressure":
+            # positive pressure pushes against the outward normal (+x on
+            # the bottom face): a force in -x, up
+            lines = ["*DLOAD"]
+            lines += ["HOLD%d, P%d, %.10g" % (k, k, scale * CASE["hold_traction"]) for k in sorted(hold_sets)]
+        else:
+            lines = ["*CLOAD"]
+            for n, force in sorted(hold_forces.items()):
+                lines += ["%d, %d, %.10g" % (n, d + 1, scale * force[d]) for d in range(3) if force[d] != 0]
+        return lines
+
+    # Step 1: static equilibrium under gravity and hold, loads ramped.
+    out += ["*STEP, NLGEOM, INC=100", "*STATIC", "0.5, 1.", "*DLOAD", gravity]
+    out += hold(1.0)
+    out += ["*NODE PRINT, NSET=NTIP", "U"]
+    # ccx needs energy output in the first step for a nonlinear dynamic
+    # step to follow; the totals only are cheap
+    out += ["*EL PRINT, ELSET=EALL, TOTALS=ONLY", "ELSE", "*END STEP"]
+
+    # Step 2: release; HHT with fixed increments (DIRECT), loads applied
+    # in full from the start of the step.
+    n_steps = int(round(options.end_time / CASE["time_step"]))
+    out += ["*STEP, NLGEOM, INC=%d" % (n_steps + 10)]
+    out += ["*DYNAMIC, DIRECT, ALPHA=%g" % CASE["alpha"], "%g, %.10g" % (CASE["time_step"], options.end_time)]
+    if options.hold_load == "pressure":
+        out += ["*DLOAD, OP=NEW", gravity]  # removes the pressures
+    else:
+        out += hold(0.0)
+    out += ["*NODE PRINT, NSET=NTIP, FREQUENCY=1", "U", "*END STEP", ""]
+    Path(path).write_text("\n".join(out))
+
+    total_hold = sum(area for _, _, _, area, _ in model["hold"]) * CASE["hold_traction"]
+    return total_hold
+
+
+# ---------------------------------------------------------------------------
+# Running ccx
+# ---------------------------------------------------------------------------
+def ccx_version(ccx):
+    result = subprocess.run([ccx, "-v"], capture_output=True, text=True, timeout=60)
+    match = re.search(r"Version\s+(\S+)", result.stdout + result.stderr)
+    return match.group(1) if match else "unknown"
+
+
+def run_ccx(ccx, workdir, job, threads):
+    env = dict(os.environ)
+    for variable in ("OMP_NUM_THREADS", "CCX_NPROC_STIFFNESS", "CCX_NPROC_RESULTS",
+                     "CCX_NPROC_EQUATION_SOLVER", "OPENBLAS_NUM_THREADS"):
+        env[variable] = str(threads)
+    log_path = Path(workdir) / (job + ".log")
+    with open(log_path, "w") as log:
+        start = time.perf_counter()
+        result = subprocess.run([ccx, "-i", job], cwd=workdir, env=env, stdout=log, stderr=subprocess.STDOUT)
+        wall = time.perf_counter() - start
+    peak_kib = resource.getrusage(resource.RUSAGE_CHILDREN).ru_maxrss  # KiB on Linux
+    text = log_path.read_text(errors="replace")
+    # ccx may end with exit code 0 after an *ERROR
+    if result.returncode != 0 or "*ERROR" in text:
+        tail = "\n".join(text.splitlines()[-40:])
+        sys.exit("ccx failed (exit code %d); the end of %s:\n%s" % (result.returncode, log_path, tail))
+    return wall, peak_kib, text
+
+
+# ---------------------------------------------------------------------------
+# Results
+# ---------------------------------------------------------------------------
+def read_displacements(dat_path):
+    """Blocks 'displacements (vx,vy,vz) for set NTIP and time T' of the
+    .dat file: returns the total times and a list of {node: (ux,uy,uz)}."""
+    times, blocks, current = [], [], None
+    header = re.compile(r"^\s*displacements \(vx,vy,vz\) for set NTIP and time\s+(\S+)")
+    for line in open(dat_path):
+        match = header.match(line)
+        if match:
+            current = {}
+            times.append(float(match.group(1)))
+            blocks.append(current)
+            continue
+        values = line.split()
+        if current is not None and len(values) == 4 and values[0].isdigit():
+            current[int(values[0])] = tuple(float(v) for v in values[1:])
+        elif current is not None and values and not values[0].isdigit():
+            current = None  # another kind of output block
+    return np.array(times), blocks
+
+
+def read_increments(sta_path):
+    """Increments and Newton iterations per step from the .sta file."""
+    steps = {}
+    for line in open(sta_path):
+        values = line.split()
+        if len(values) == 7 and values[0].isdigit():
+            step = steps.setdefault(int(values[0]), {"increments": 0, "iterations": 0})
+            step["increments"] += 1
+            step["iterations"] += int(values[3])
+    return steps
+
+
+def peak_frequency(t, u, padding=64):
+    """Frequency of the largest FFT magnitude of u - mean(u), zero-padded to
+    at least `padding` times its length, refined by a parabola through the
+    peak bin and its neighbours. Bins below 1/T (DC leakage) are skipped."""
+    dt = t[1] - t[0]
+    signal = u - u.mean()
+    n = 1 << int(math.ceil(math.log2(padding * len(signal))))
+    magnitude = np.abs(np.fft.rfft(signal, n))
+    frequency = np.fft.rfftfreq(n, dt)
+    first = np.searchsorted(frequency, 1.0 / (len(signal) * dt))
+    k = first + int(np.argmax(magnitude[first:-1]))
+    a, b, c = magnitude[k - 1 : k + 2]
+    shift = 0.5 * (a - c) / (a - 2 * b + c)  # vertex of the parabola, in bins
+    return frequency[k] + shift * (frequency[1] - frequency[0])
+
+
+def zero_crossing_frequency(t, u):
+    """Frequency from the crossings of u - mean(u) (linearly interpolated):
+    (number of crossings - 1) half periods between the first and the last."""
+    s = u - u.mean()
+    k = np.nonzero(np.sign(s[:-1]) * np.sign(s[1:]) < 0)[0]
+    if len(k) < 3:
+        return None, len(k)
+    crossings = t[k] - s[k] * (t[k + 1] - t[k]) / (s[k + 1] - s[k])
+    return (len(crossings) - 1) / (2 * (crossings[-1] - crossings[0])), len(crossings)
+
+
+def decay_damping_ratio(t, u, f):
+    """Damping ratio from the decay of the cycle amplitudes: half the range
+    of u in each full period 1/f, fitted by A0 exp(-2 pi xi f t)."""
+    period = 1.0 / f
+    starts = np.arange(t[0], t[-1] - period, period)
+    if len(starts) < 3:
+        return None
+    centres, amplitudes = [], []
+    for start in starts:
+        window = (t >= start) & (t < start + period)
+        centres.append(start + period / 2)
+        amplitudes.append(0.5 * (u[window].max() - u[window].min()))
+    slope = np.polyfit(centres, np.log(amplitudes), 1)[0]
+    return -slope / (2 * math.pi * f)
+
+
+def compare_with_ours(csv_path, t, ux):
+    """Our tip_trajectory.csv through the same estimators, and the largest
+    difference of the two histories if they share their times."""
+    with open(csv_path) as stream:
+        lines = [line for line in stream if not line.startswith("#")]
+    names = lines[0].strip().split(",")
+    data = np.array([[float(v) for v in line.split(",")] for line in lines[1:]])
+    t_ours, u_ours = data[:, names.index("t")], data[:, names.index("u_x")]
+    ours = {"file": Path(csv_path).name, "tip_u_x_t0_mm": float(u_ours[0])}
+    if len(t_ours) > 20:
+        f_peak = peak_frequency(t_ours, u_ours)
+        ours["f_peak_Hz"] = round(f_peak, 5)
+        f_zero = zero_crossing_frequency(t_ours, u_ours)[0]
+        ours["f_zero_crossings_Hz"] = round(f_zero, 5) if f_zero else None
+        xi = decay_damping_ratio(t_ours, u_ours, f_peak)
+        ours["xi_amplitude_decay"] = round(xi, 5) if xi is not None else None
+    n = min(len(t), len(t_ours))
+    if np.allclose(t[:n], t_ours[:n], atol=1e-6):
+        ours["max_abs_difference_u_x_mm"] = round(float(np.abs(ux[:n] - u_ours[:n]).max()), 4)
+        ours["rms_difference_u_x_mm"] = round(float(np.sqrt(np.mean((ux[:n] - u_ours[:n]) ** 2))), 4)
+    return ours
+
+
+# ---------------------------------------------------------------------------
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    parser.add_argument("--workdir", default=str(REPOSITORY / "output" / "calculix_peer"),
+                        help="directory for job.inp and ccx's output (default: output/calculix_peer of the repository)")
+    parser.add_argument("--mesh", default=str(REPOSITORY / CASE["mesh"]), help="gmsh MSH 2.2 mesh (default: %s)" % CASE["mesh"])
+    parser.add_argument("--end-time", type=float, default=CASE["end_time"], help="end of the oscillation [s] (default: 5.25)")
+    parser.add_argument("--threads", type=int, default=1, help="threads for ccx (default: 1)")
+    parser.add_argument("--law", choices=("arruda-boyce", "neo-hooke"), default="arruda-boyce",
+                        help="ccx potential: arruda-boyce (large locking stretch: our energy exactly, default) "
+                        "or neo-hooke (ccx's volumetric term (J-1)^2/D1)")
+    parser.add_argument("--hold-load", choices=("pressure", "cload"), default="pressure",
+                        help="hold as *DLOAD pressure (follower, default) or *CLOAD nodal forces (dead, as ours)")
+    parser.add_argument("--no-damping", dest="damping", action="store_false", help="omit the Rayleigh damping")
+    parser.add_argument("--ccx", default="ccx", help="the ccx executable (default: ccx on the PATH)")
+    parser.add_argument("--compare", metavar="CSV",
+                        help="our tip_trajectory.csv (e.g. output/vertical_ds20_3d/tip_trajectory.csv): apply the same "
+                        "estimators to it and compare the histories")
+    options = parser.parse_args()
+
+    ccx = shutil.which(options.ccx)
+    if ccx is None:
+        sys.exit("ccx not found (%s); on Debian: apt-get install calculix-ccx" % options.ccx)
+    version = ccx_version(ccx)
+
+    workdir = Path(options.workdir)
+    workdir.mkdir(parents=True, exist_ok=True)
+    job = "job"
+    for suffix in (".dat", ".sta", ".frd", ".cvg"):
+        (workdir / (job + suffix)).unlink(missing_ok=True)
+
+    # model and densities from the masses (the mesh's volume is not the
+    # revolved section's, so the scene prescribes masses, not densities)
+    model = build_model(options.mesh)
+    fraction = CASE["model_fraction"]
+    densities = {}
+    for name, key in (("SILICONE", "silicone"), ("BLOCK", "block")):
+        volume = model["elements"][name]["volumes"].sum()
+        densities[name] = CASE[key]["mass"] * fraction / volume
+    total_hold = write_input(workdir / (job + ".inp"), model, options, densities)
+    n_nodes = len(model["node_ids"])
+    n_elements = sum(len(b["ids"]) for b in model["elements"].values())
+    constrained = set()
+    for boundary, (first, last) in CASE["fixed"].items():
+        for n in model["sets"]["NB%d" % boundary]:
+            constrained.update((int(n), d) for d in range(first, last + 1))
+    n_free_dofs = 3 * n_nodes - len(constrained)
+
+    print("CalculiX %s peer of %s" % (version, CASE["scene"]))
+    print("  mesh %s: %d nodes, %d C3D4 elements, %d dofs (%d free)" % (
+        Path(options.mesh).name, n_nodes, n_elements, 3 * n_nodes, n_free_dofs))
+    print("  densities: silicone %.6g, block %.6g kg/mm^3; hold force %.5g mN on %d faces" % (
+        densities["SILICONE"], densities["BLOCK"], total_hold, len(model["hold"])))
+    print("  running ccx in %s with %d thread(s), end time %g s ..." % (workdir, options.threads, options.end_time))
+    sys.stdout.flush()
+
+    wall, peak_kib, log_text = run_ccx(ccx, workdir, job, options.threads)
+
+    # tip history: the static state (the last output of step 1, total
+    # time 1) is t = 0; the dynamic step's outputs follow at 1 + t.
+    times, blocks = read_displacements(workdir / (job + ".dat"))
+    weights = model["tip_weights"]
+    tip = model["tip_nodes"]
+    u_weighted = np.array([sum(w * np.array(b[n]) for n, w in zip(tip, weights)) for b in blocks])
+    u_mean = np.array([np.mean([b[n] for n in tip], axis=0) for b in blocks])
+    u_axis = np.array([b[model["axis_node"]] for b in blocks])
+    static_end = np.nonzero(np.isclose(times, 1.0))[0]
+    if len(static_end) == 0:
+        sys.exit("no output at the end of the static step in %s" % (workdir / (job + ".dat")))
+    keep = np.arange(static_end[-1], len(times))
+    t = times[keep] - 1.0
+    steps = read_increments(workdir / (job + ".sta"))
+
+    with open(workdir / "tip_history.csv", "w") as stream:
+        stream.write("# ccx tip motion of material 2: volume-weighted mean (= centre of mass), "
+                     "plain nodal mean, node %d on the axis; mm\n" % model["axis_node"])
+        stream.write("t,u_x,u_y,u_z,u_x_nodal_mean,u_x_axis_node\n")
+        for k in keep:
+            stream.write("%.6g,%.10g,%.10g,%.10g,%.10g,%.10g\n" % (
+                times[k] - 1.0, *u_weighted[k], u_mean[k][0], u_axis[k][0]))
+
+    ux = u_weighted[keep, 0]
+    match = re.search(r"Total CalculiX Time:\s*(\S+)", log_text)
+    ccx_seconds = float(match.group(1)) if match else None
+    result = {
+        "case": CASE["scene"],
+        "solver": "CalculiX ccx",
+        "ccx_version": version,
+        "mesh": Path(options.mesh).name,
+        "nodes": n_nodes,
+        "elements": n_elements,
+        "element_type": "C3D4",
+        "dofs": 3 * n_nodes,
+        "free_dofs": n_free_dofs,
+        "threads": options.threads,
+        "wall_seconds": round(wall, 3),
+        "ccx_reported_seconds": ccx_seconds,
+        "peak_memory_MiB": round(peak_kib / 1024, 1),
+        "end_time": options.end_time,
+        "time_step": CASE["time_step"],
+        "hht_alpha": CASE["alpha"],
+        "static_increments": steps.get(1, {}).get("increments"),
+        "static_iterations": steps.get(1, {}).get("iterations"),
+        "dynamic_increments": steps.get(2, {}).get("increments"),
+        "dynamic_iterations": steps.get(2, {}).get("iterations"),
+        "material_law": options.law,
+        "damping": "Rayleigh beta = %.6g s (global)" % CASE["silicone"]["zeta"] if options.damping else "none",
+        "hold_load": options.hold_load,
+        "hold_force_mN": total_hold,
+        "tip_quantity": "volume-weighted mean x-displacement of material 2 (its centre of mass)",
+        "tip_u_x_t0_mm": float(ux[0]),
+        "tip_u_x_min_mm": float(ux.min()),
+        "tip_u_x_max_mm": float(ux.max()),
+        "tip_u_x_mean_mm": float(ux.mean()),
+        "reference": CASE["reference"],
+    }
+    if len(t) > 20:
+        f_peak = peak_frequency(t, ux)
+        f_zero, n_crossings = zero_crossing_frequency(t, ux)
+        xi = decay_damping_ratio(t, ux, f_peak)
+        result.update({
+            "f_peak_Hz": round(f_peak, 5),
+            "f_zero_crossings_Hz": round(f_zero, 5) if f_zero else None,
+            "zero_crossings": n_crossings,
+            "xi_amplitude_decay": round(xi, 5) if xi is not None else None,
+            "f_peak_relative_to_ours": round(f_peak / CASE["reference"]["f_peak_Hz"] - 1, 5),
+        })
+
+    if options.compare:
+        result["ours"] = compare_with_ours(options.compare, t, ux)
+
+    caveats = [
+        "ccx ARRUDA-BOYCE with locking stretch %g and D = 2/kappa: our neo-Hookean energy up to < 1e-8 "
+        "relative" % ARRUDA_BOYCE_LOCKING_STRETCH if options.law == "arruda-boyce" else
+        "ccx NEO HOOKE (C10 = mu/2, D1 = 2/kappa): volumetric term (J-1)^2/D1 instead of our "
+        "kappa/4 (J^2 - 1 - 2 ln J); same small-strain moduli, differs at finite volume change",
+        "Rayleigh damping (*DAMPING, BETA = zeta) is global in ccx 2.20: it also damps the tip block, "
+        "which has no damping in our model" if options.damping else "run without damping (--no-damping)",
+        "hold as *DLOAD pressure: a follower load on the deformed faces (ours is a dead nominal traction)"
+        if options.hold_load == "pressure" else "hold as *CLOAD consistent nodal forces: dead load, as ours",
+        "hold released in full at the start of the dynamic step (ours: HHT-weighted, 25 % of it in the first step)",
+        "wall time is the whole ccx run (input, static step, dynamic step, .dat output)",
+    ]
+    result["caveats"] = caveats
+    (workdir / "calculix_peer.json").write_text(json.dumps(result, indent=2) + "\n")
+
+    print("  wall time %.2f s (%d thread(s)), peak memory %.1f MiB" % (wall, options.threads, peak_kib / 1024))
+    print("  increments: static %s, dynamic %s (%s Newton iterations)" % (
+        result["static_increments"], result["dynamic_increments"], result["dynamic_iterations"]))
+    print("  tip u_x at t = 0: %.4g mm (ours %.3g mm); range %.4g .. %.4g mm" % (
+        ux[0], CASE["reference"]["u_x_t0"], ux.min(), ux.max()))
+    if "f_peak_Hz" in result:
+        print("  tip frequency: FFT peak %.4f Hz, zero crossings %s Hz (%d crossings); ours %.3f Hz (%+.2f %%)" % (
+            result["f_peak_Hz"], "%.4f" % f_zero if f_zero else "n/a", n_crossings,
+            CASE["reference"]["f_peak_Hz"], 100 * result["f_peak_relative_to_ours"]))
+        if result["xi_amplitude_decay"] is not None:
+            print("  damping ratio from the amplitude decay: %.4f (ours, modal fit: %.3f)" % (
+                result["xi_amplitude_decay"], CASE["reference"]["xi_modal_fit"]))
+    if "ours" in result:
+        ours = result["ours"]
+        print("  ours with the same estimators: FFT peak %s Hz, zero crossings %s Hz, xi %s; "
+              "max |u_x(ccx) - u_x(ours)| = %s mm" % (
+                  ours.get("f_peak_Hz"), ours.get("f_zero_crossings_Hz"), ours.get("xi_amplitude_decay"),
+                  ours.get("max_abs_difference_u_x_mm", "n/a (different times)")))
+    print("  caveats:\n    - " + "\n    - ".join(caveats))
+    print("  written: %s, %s" % (workdir / "calculix_peer.json", workdir / "tip_history.csv"))
+
+
+if __name__ == "__main__":
+    main()
