@@ -14,8 +14,10 @@ Usage (from anywhere; paths default to the repository of this script):
     python3 doc/performance/calculix_peer.py                  # full run
     python3 doc/performance/calculix_peer.py --end-time 0.5   # quick try
     python3 doc/performance/calculix_peer.py --threads 2
-    python3 doc/performance/calculix_peer.py \
+    python3 doc/performance/calculix_peer.py \\
         --compare output/vertical_ds20_3d/tip_trajectory.csv
+
+Needs ccx (Debian: calculix-ccx) and Python 3 with numpy.
 
 Steps:
   1. read the gmsh MSH 2.2 mesh (no gmsh module needed) and write
@@ -49,14 +51,14 @@ Differences from our model (also written to the JSON file as caveats):
         U = C10 (I1bar - 3) + (J - 1)^2 / D1,  C10 = mu/2, D1 = 2/kappa,
     which has the same shear and small-strain bulk modulus but a
     different volumetric term at finite strain.
-  * Damping. ccx 2.20 has Rayleigh damping C = alpha M + beta K for
-    implicit *DYNAMIC steps (*DAMPING, ALPHA=, BETA=; it must follow a
-    *MATERIAL card but is global: "only one *DAMPING card ... applies to
-    the whole model"). So beta = zeta of the silicone also damps the tip
-    block, which carries no damping in our model. Stiffness-proportional
-    damping does not act on rigid-body motion, and the block moves nearly
-    rigidly (it is 86 times stiffer than the silicone), so this should
-    matter little for the tip.
+  * Damping. ccx 2.20 has Rayleigh damping C = alpha M + beta K in
+    implicit *DYNAMIC steps (*DAMPING, ALPHA=, BETA=; the card must follow
+    a *MATERIAL card but is global: "only one *DAMPING card can be used
+    ... It applies to the whole model"). So beta = zeta of the silicone
+    also damps the tip block, which carries no damping in our model.
+    Stiffness-proportional damping does not act on rigid-body motion, and
+    the block moves nearly rigidly (it is 86 times stiffer than the
+    silicone), so this should matter little for the tip.
   * Hold load. Our hold is a nominal (dead) traction on the bottom face
     of the block. By default (--hold-load pressure) it is a *DLOAD
     pressure on those element faces, which ccx applies, with NLGEOM, on
@@ -66,7 +68,7 @@ Differences from our model (also written to the JSON file as caveats):
     instead, exactly our load.
   * Release. Our hold acts for t <= 0, so the HHT-weighted external force
     of our first time step still carries -alpha = 25 % of it; in ccx the
-    load of a step is applied in full from its start.
+    loads of a step apply in full from its start.
   * Elements. ccx's C3D4 are linear tetrahedra as ours; the mass matrix
     and the gravity load are ccx's own (not necessarily the same
     quadrature as ours).
@@ -125,10 +127,11 @@ CASE = {
     "end_time": 5.25,
     "alpha": -0.25,
     # Our result for this case (output/vertical_ds20_3d/tip_spectrum.csv).
-    "reference": {"f_peak_Hz": 3.534, "xi_modal_fit": 0.017, "u_x_t0": 8.81},
+    "reference": {"f_peak_Hz": 3.534, "xi_modal_fit": 0.017, "u_x_t0_mm": 8.81},
 }
 
 ARRUDA_BOYCE_LOCKING_STRETCH = 1e4  # large: the potential is neo-Hookean
+JOB = "job"
 
 
 # ---------------------------------------------------------------------------
@@ -151,7 +154,8 @@ def read_msh(path):
 
     version, file_type = lines[lines.index("$MeshFormat") + 1].split()[:2]
     if not version.startswith("2") or file_type != "0":
-        sys.exit("%s: expected gmsh MSH 2.x ASCII, found version %s, type %s" % (path, version, file_type))
+        sys.exit("%s: expected gmsh MSH 2.x ASCII, found version %s, file type %s"
+                 % (path, version, file_type))
 
     rows = [line.split() for line in section("Nodes")]
     node_ids = np.array([int(row[0]) for row in rows])
@@ -160,8 +164,7 @@ def read_msh(path):
     tets, triangles = {}, {}
     for line in section("Elements"):
         values = [int(v) for v in line.split()]
-        element_type, n_tags = values[1], values[2]
-        physical = values[3]
+        element_type, n_tags, physical = values[1], values[2], values[3]
         nodes = values[3 + n_tags :]
         if element_type == 4:  # 4-node tetrahedron
             tets.setdefault(physical, []).append(nodes)
@@ -179,19 +182,21 @@ def tet_volumes(points, tets):
 
 
 def hold_faces(points, index, block_tets, triangles, x_min):
-    """The faces of block tetrahedra under the hold traction.
+    """The faces of block tetrahedra under the hold traction: the boundary
+    triangles with all nodes at x > x_min.
 
     Returns a list of (element position in block_tets, ccx face number,
     triangle node ids, triangle area, outward unit normal).
     ccx's C3D4 faces (manual, *DLOAD): 1: 1-2-3, 2: 1-4-2, 3: 2-4-3,
-    4: 3-4-1, i.e. face number by the local node *not* on the face.
+    4: 3-4-1, i.e. the face number follows from the local node *not* on
+    the face.
     """
-    face_opposite = {3: 1, 2: 2, 0: 3, 1: 4}
+    face_without = {3: 1, 2: 2, 0: 3, 1: 4}
     by_nodes = {}
     for e, tet in enumerate(block_tets):
         for local in range(4):
             face = frozenset(n for k, n in enumerate(tet) if k != local)
-            by_nodes[face] = (e, face_opposite[local])
+            by_nodes[face] = (e, face_without[local])
     faces = []
     for tri in triangles:
         x = points[[index[n] for n in tri]]
@@ -199,9 +204,9 @@ def hold_faces(points, index, block_tets, triangles, x_min):
             e, number = by_nodes[frozenset(tri)]
             normal = np.cross(x[1] - x[0], x[2] - x[0])
             area = 0.5 * np.linalg.norm(normal)
-            # orient the normal outwards: away from the element's 4th node
-            centre = points[[index[n] for n in block_tets[e]]].mean(axis=0)
             normal /= 2 * area
+            # outwards: away from the element's centre
+            centre = points[[index[n] for n in block_tets[e]]].mean(axis=0)
             if np.dot(normal, x.mean(axis=0) - centre) < 0:
                 normal = -normal
             faces.append((e, number, tri, area, normal))
@@ -214,28 +219,28 @@ def build_model(mesh_path):
     index = {n: k for k, n in enumerate(node_ids)}
     as_index = np.vectorize(index.get)
 
-    model = {"node_ids": node_ids, "points": points, "sets": {}}
-    elements, first = {}, 1
+    model = {"node_ids": node_ids, "points": points, "node_sets": {}, "elements": {}}
+    first = 1
     for tag, name in ((1, "SILICONE"), (2, "BLOCK")):
         conn = tets[tag].copy()
         volume = tet_volumes(points, as_index(conn))
         flipped = volume < 0  # ccx needs positive volumes: swap two nodes
         conn[flipped, 1], conn[flipped, 2] = conn[flipped, 2], conn[flipped, 1].copy()
-        elements[name] = {
+        model["elements"][name] = {
             "ids": np.arange(first, first + len(conn)),
             "conn": conn,
             "volumes": np.abs(volume),
         }
         first += len(conn)
-    model["elements"] = elements
 
     for boundary in CASE["fixed"]:
-        model["sets"]["NB%d" % boundary] = np.unique(triangles[boundary])
+        model["node_sets"]["NB%d" % boundary] = np.unique(triangles[boundary])
 
-    block = elements["BLOCK"]
-    model["hold"] = hold_faces(points, index, block["conn"], triangles[CASE["hold_boundary"]], CASE["hold_x_min"])
+    block = model["elements"]["BLOCK"]
+    model["hold"] = hold_faces(points, index, block["conn"],
+                               triangles[CASE["hold_boundary"]], CASE["hold_x_min"])
 
-    # Tip: all nodes of the block, weighted so that the weighted sum of
+    # Tip: all nodes of the block, weighted so that the weighted sum of the
     # nodal displacements is the block's mean displacement (V_e/4 per node
     # and element, divided by the block's volume).
     tip_nodes = np.unique(block["conn"])
@@ -252,90 +257,113 @@ def build_model(mesh_path):
     return model
 
 
+def densities_from_masses(model):
+    """The scene prescribes masses (the mesh's volume is not that of the
+    revolved section), so the densities follow from the mesh's volumes."""
+    densities = {}
+    for name, key in (("SILICONE", "silicone"), ("BLOCK", "block")):
+        volume = model["elements"][name]["volumes"].sum()
+        densities[name] = CASE[key]["mass"] * CASE["model_fraction"] / volume
+    return densities
+
+
+def count_dofs(model):
+    """All and unconstrained displacement components."""
+    n_nodes = len(model["node_ids"])
+    constrained = set()
+    for boundary, (first, last) in CASE["fixed"].items():
+        for n in model["node_sets"]["NB%d" % boundary]:
+            constrained.update((int(n), d) for d in range(first, last + 1))
+    return 3 * n_nodes, 3 * n_nodes - len(constrained)
+
+
 # ---------------------------------------------------------------------------
 # Input deck
 # ---------------------------------------------------------------------------
 def id_lines(ids, per_line=16):
-    ids = list(ids)
-    return "\n".join(", ".join(str(i) for i in ids[k : k + per_line]) for k in range(0, len(ids), per_line))
+    """Ids for a set card, 16 a line (ccx's lines hold at most 132 characters)."""
+    ids = [str(i) for i in ids]
+    return "\n".join(", ".join(ids[k : k + per_line]) for k in range(0, len(ids), per_line))
 
 
-def material_cards(name, mu, kappa, density, law):
-    if law == "arruda-boyce":
-        hyper = "*HYPERELASTIC, ARRUDA-BOYCE\n%.10g, %.10g, %.10g\n" % (mu, ARRUDA_BOYCE_LOCKING_STRETCH, 2.0 / kappa)
-    else:
-        hyper = "*HYPERELASTIC, NEO HOOKE\n%.10g, %.10g\n" % (mu / 2.0, 2.0 / kappa)
-    return "*MATERIAL, NAME=%s\n%s*DENSITY\n%.10g\n" % (name, hyper, density)
+def material_cards(name, properties, density, law):
+    mu, kappa = properties["mu"], properties["kappa"]
+    if law == "arruda-boyce":  # mu, locking stretch, D
+        hyper = ["*HYPERELASTIC, ARRUDA-BOYCE",
+                 "%.10g, %.10g, %.10g" % (mu, ARRUDA_BOYCE_LOCKING_STRETCH, 2.0 / kappa)]
+    else:  # C10, D1
+        hyper = ["*HYPERELASTIC, NEO HOOKE", "%.10g, %.10g" % (mu / 2.0, 2.0 / kappa)]
+    return ["*MATERIAL, NAME=%s" % name] + hyper + ["*DENSITY", "%.10g" % density]
 
 
 def write_input(path, model, options, densities):
-    points, node_ids = model["points"], model["node_ids"]
-    out = ["** CalculiX peer of %s, written by doc/performance/calculix_peer.py" % CASE["scene"]]
-    out.append("** units: mm, kg, s (force mN, stress kPa)")
-    out.append("*NODE, NSET=NALL")
+    """Write the ccx input deck; returns the total hold force [mN]."""
+    out = ["** CalculiX peer of %s, written by doc/performance/calculix_peer.py" % CASE["scene"],
+           "** units: mm, kg, s (force mN, stress kPa)",
+           "*NODE, NSET=NALL"]
     # ccx reads numbers in fields of 20 characters: 12 digits fit
-    out += ["%d, %.12g, %.12g, %.12g" % (n, *x) for n, x in zip(node_ids, points)]
-    for name, block in model["elements"].items():
+    out += ["%d, %.12g, %.12g, %.12g" % (n, *x) for n, x in zip(model["node_ids"], model["points"])]
+    for name, elements in model["elements"].items():
         out.append("*ELEMENT, TYPE=C3D4, ELSET=%s" % name)
-        out += ["%d, %d, %d, %d, %d" % (e, *conn) for e, conn in zip(block["ids"], block["conn"])]
-    out.append("*ELSET, ELSET=EALL\nSILICONE, BLOCK")
-    for name, nodes in model["sets"].items():
-        out.append("*NSET, NSET=%s\n%s" % (name, id_lines(nodes)))
-    out.append("*NSET, NSET=NTIP\n%s" % id_lines(model["tip_nodes"]))
+        out += ["%d, %d, %d, %d, %d" % (e, *c) for e, c in zip(elements["ids"], elements["conn"])]
+    out += ["*ELSET, ELSET=EALL", "SILICONE, BLOCK"]
+    for name, nodes in model["node_sets"].items():
+        out += ["*NSET, NSET=%s" % name, id_lines(nodes)]
+    out += ["*NSET, NSET=NTIP", id_lines(model["tip_nodes"])]
 
-    # hold faces: one element set per ccx face number (for *DLOAD), or the
-    # consistent nodal forces of the nominal traction (for *CLOAD)
+    # The hold: one element set per ccx face number (for *DLOAD), and the
+    # consistent nodal forces of the nominal traction (for *CLOAD).
     block_ids = model["elements"]["BLOCK"]["ids"]
     hold_sets = {}
     for e, number, _, _, _ in model["hold"]:
         hold_sets.setdefault(number, []).append(block_ids[e])
     for number, ids in sorted(hold_sets.items()):
-        out.append("*ELSET, ELSET=HOLD%d\n%s" % (number, id_lines(ids)))
+        out += ["*ELSET, ELSET=HOLD%d" % number, id_lines(ids)]
     hold_forces = {}
     for _, _, tri, area, normal in model["hold"]:
         for n in tri:  # -traction * normal, a third of the face per node
-            hold_forces[n] = hold_forces.get(n, 0.0) - CASE["hold_traction"] * area / 3 * normal
-
-    silicone, block = CASE["silicone"], CASE["block"]
-    out.append(material_cards("SILICONE", silicone["mu"], silicone["kappa"], densities["SILICONE"], options.law).rstrip())
-    if options.damping:
-        # global in ccx 2.20 (see the module's docstring); must follow *MATERIAL
-        out.append("*DAMPING, ALPHA=0., BETA=%.10g" % silicone["zeta"])
-    out.append(material_cards("BLOCK", block["mu"], block["kappa"], densities["BLOCK"], options.law).rstrip())
-    out.append("*SOLID SECTION, ELSET=SILICONE, MATERIAL=SILICONE")
-    out.append("*SOLID SECTION, ELSET=BLOCK, MATERIAL=BLOCK")
-
-    out.append("*BOUNDARY")
-    for boundary, (first, last) in CASE["fixed"].items():
-        out.append("NB%d, %d, %d" % (boundary, first, last))
-
-    gravity = "EALL, GRAV, %.10g, 1., 0., 0." % CASE["gravity"]
+            force = -CASE["hold_traction"] * area / 3 * normal
+            hold_forces[n] = hold_forces.get(n, 0.0) + force
 
     def hold(scale):
         if options.hold_load == "pressure":
-            # positive pressure pushes against the outward normal (+x on
-            # the bottom face): a force in -x, up
-            lines = ["*DLOAD"]
-            lines += ["HOLD%d, P%d, %.10g" % (k, k, scale * CASE["hold_traction"]) for k in sorted(hold_sets)]
-        else:
-            lines = ["*CLOAD"]
-            for n, force in sorted(hold_forces.items()):
-                lines += ["%d, %d, %.10g" % (n, d + 1, scale * force[d]) for d in range(3) if force[d] != 0]
+            # a positive pressure pushes against the outward normal (+x on
+            # the bottom face): a force in -x, upwards
+            value = scale * CASE["hold_traction"]
+            return ["*DLOAD"] + ["HOLD%d, P%d, %.10g" % (k, k, value) for k in sorted(hold_sets)]
+        lines = ["*CLOAD"]
+        for n, force in sorted(hold_forces.items()):
+            lines += ["%d, %d, %.10g" % (n, d + 1, scale * force[d] + 0.0)  # no "-0"
+                      for d in range(3) if force[d] != 0]
         return lines
 
-    # Step 1: static equilibrium under gravity and hold, loads ramped.
+    out += material_cards("SILICONE", CASE["silicone"], densities["SILICONE"], options.law)
+    if options.damping:
+        # global in ccx 2.20 (see the docstring); must follow a *MATERIAL
+        out.append("*DAMPING, ALPHA=0., BETA=%.10g" % CASE["silicone"]["zeta"])
+    out += material_cards("BLOCK", CASE["block"], densities["BLOCK"], options.law)
+    out += ["*SOLID SECTION, ELSET=SILICONE, MATERIAL=SILICONE",
+            "*SOLID SECTION, ELSET=BLOCK, MATERIAL=BLOCK",
+            "*BOUNDARY"]
+    out += ["NB%d, %d, %d" % (b, first, last) for b, (first, last) in CASE["fixed"].items()]
+
+    gravity = "EALL, GRAV, %.10g, 1., 0., 0." % CASE["gravity"]
+
+    # Step 1: static equilibrium under gravity and hold (loads ramped over
+    # two or more increments).
     out += ["*STEP, NLGEOM, INC=100", "*STATIC", "0.5, 1.", "*DLOAD", gravity]
     out += hold(1.0)
     out += ["*NODE PRINT, NSET=NTIP", "U"]
-    # ccx needs energy output in the first step for a nonlinear dynamic
-    # step to follow; the totals only are cheap
+    # ccx wants energy output in the first step if a nonlinear dynamic step
+    # follows; the total alone is cheap
     out += ["*EL PRINT, ELSET=EALL, TOTALS=ONLY", "ELSE", "*END STEP"]
 
-    # Step 2: release; HHT with fixed increments (DIRECT), loads applied
-    # in full from the start of the step.
-    n_steps = int(round(options.end_time / CASE["time_step"]))
-    out += ["*STEP, NLGEOM, INC=%d" % (n_steps + 10)]
-    out += ["*DYNAMIC, DIRECT, ALPHA=%g" % CASE["alpha"], "%g, %.10g" % (CASE["time_step"], options.end_time)]
+    # Step 2: release. HHT with fixed increments (DIRECT); the loads of the
+    # step apply in full from its start.
+    n_increments = int(round(options.end_time / CASE["time_step"]))
+    out += ["*STEP, NLGEOM, INC=%d" % (n_increments + 10),
+            "*DYNAMIC, DIRECT, ALPHA=%g" % CASE["alpha"],
+            "%g, %.10g" % (CASE["time_step"], options.end_time)]
     if options.hold_load == "pressure":
         out += ["*DLOAD, OP=NEW", gravity]  # removes the pressures
     else:
@@ -343,8 +371,7 @@ def write_input(path, model, options, densities):
     out += ["*NODE PRINT, NSET=NTIP, FREQUENCY=1", "U", "*END STEP", ""]
     Path(path).write_text("\n".join(out))
 
-    total_hold = sum(area for _, _, _, area, _ in model["hold"]) * CASE["hold_traction"]
-    return total_hold
+    return CASE["hold_traction"] * sum(area for _, _, _, area, _ in model["hold"])
 
 
 # ---------------------------------------------------------------------------
@@ -356,22 +383,26 @@ def ccx_version(ccx):
     return match.group(1) if match else "unknown"
 
 
-def run_ccx(ccx, workdir, job, threads):
+def run_ccx(ccx, workdir, threads):
+    """Run ccx on WORKDIR/job.inp; returns wall seconds, the peak resident
+    memory of the child processes [KiB] and ccx's screen output."""
     env = dict(os.environ)
     for variable in ("OMP_NUM_THREADS", "CCX_NPROC_STIFFNESS", "CCX_NPROC_RESULTS",
                      "CCX_NPROC_EQUATION_SOLVER", "OPENBLAS_NUM_THREADS"):
         env[variable] = str(threads)
-    log_path = Path(workdir) / (job + ".log")
+    log_path = workdir / (JOB + ".log")
     with open(log_path, "w") as log:
         start = time.perf_counter()
-        result = subprocess.run([ccx, "-i", job], cwd=workdir, env=env, stdout=log, stderr=subprocess.STDOUT)
+        result = subprocess.run([ccx, "-i", JOB], cwd=workdir, env=env,
+                                stdout=log, stderr=subprocess.STDOUT)
         wall = time.perf_counter() - start
     peak_kib = resource.getrusage(resource.RUSAGE_CHILDREN).ru_maxrss  # KiB on Linux
     text = log_path.read_text(errors="replace")
-    # ccx may end with exit code 0 after an *ERROR
+    # ccx may exit with code 0 after an *ERROR
     if result.returncode != 0 or "*ERROR" in text:
         tail = "\n".join(text.splitlines()[-40:])
-        sys.exit("ccx failed (exit code %d); the end of %s:\n%s" % (result.returncode, log_path, tail))
+        sys.exit("ccx failed (exit code %d); the end of %s:\n%s\n\nccx failed, see above"
+                 % (result.returncode, log_path, tail))
     return wall, peak_kib, text
 
 
@@ -379,56 +410,60 @@ def run_ccx(ccx, workdir, job, threads):
 # Results
 # ---------------------------------------------------------------------------
 def read_displacements(dat_path):
-    """Blocks 'displacements (vx,vy,vz) for set NTIP and time T' of the
-    .dat file: returns the total times and a list of {node: (ux,uy,uz)}."""
-    times, blocks, current = [], [], None
+    """The blocks 'displacements (vx,vy,vz) for set NTIP and time T' of the
+    .dat file: returns the total times and a list of {node: (ux, uy, uz)}."""
     header = re.compile(r"^\s*displacements \(vx,vy,vz\) for set NTIP and time\s+(\S+)")
-    for line in open(dat_path):
-        match = header.match(line)
-        if match:
-            current = {}
-            times.append(float(match.group(1)))
-            blocks.append(current)
-            continue
-        values = line.split()
-        if current is not None and len(values) == 4 and values[0].isdigit():
-            current[int(values[0])] = tuple(float(v) for v in values[1:])
-        elif current is not None and values and not values[0].isdigit():
-            current = None  # another kind of output block
+    times, blocks, current = [], [], None
+    with open(dat_path) as stream:
+        for line in stream:
+            match = header.match(line)
+            if match:
+                current = {}
+                times.append(float(match.group(1)))
+                blocks.append(current)
+                continue
+            values = line.split()
+            if current is not None and len(values) == 4 and values[0].isdigit():
+                current[int(values[0])] = tuple(float(v) for v in values[1:])
+            elif values and not values[0].isdigit():
+                current = None  # another kind of output block
     return np.array(times), blocks
 
 
 def read_increments(sta_path):
     """Increments and Newton iterations per step from the .sta file."""
     steps = {}
-    for line in open(sta_path):
-        values = line.split()
-        if len(values) == 7 and values[0].isdigit():
-            step = steps.setdefault(int(values[0]), {"increments": 0, "iterations": 0})
-            step["increments"] += 1
-            step["iterations"] += int(values[3])
+    with open(sta_path) as stream:
+        for line in stream:
+            values = line.split()
+            if len(values) == 7 and values[0].isdigit():
+                step = steps.setdefault(int(values[0]), {"increments": 0, "iterations": 0})
+                step["increments"] += 1
+                step["iterations"] += int(values[3])
     return steps
 
 
 def peak_frequency(t, u, padding=64):
     """Frequency of the largest FFT magnitude of u - mean(u), zero-padded to
-    at least `padding` times its length, refined by a parabola through the
-    peak bin and its neighbours. Bins below 1/T (DC leakage) are skipped."""
+    at least `padding` times its length, refined by the vertex of the
+    parabola through the peak bin and its neighbours. Bins below 1/T (the
+    leakage of the mean) are skipped."""
     dt = t[1] - t[0]
     signal = u - u.mean()
     n = 1 << int(math.ceil(math.log2(padding * len(signal))))
     magnitude = np.abs(np.fft.rfft(signal, n))
     frequency = np.fft.rfftfreq(n, dt)
-    first = np.searchsorted(frequency, 1.0 / (len(signal) * dt))
+    first = max(1, int(np.searchsorted(frequency, 1.0 / (len(signal) * dt))))
     k = first + int(np.argmax(magnitude[first:-1]))
     a, b, c = magnitude[k - 1 : k + 2]
-    shift = 0.5 * (a - c) / (a - 2 * b + c)  # vertex of the parabola, in bins
+    shift = 0.5 * (a - c) / (a - 2 * b + c)  # in bins
     return frequency[k] + shift * (frequency[1] - frequency[0])
 
 
 def zero_crossing_frequency(t, u):
     """Frequency from the crossings of u - mean(u) (linearly interpolated):
-    (number of crossings - 1) half periods between the first and the last."""
+    (number of crossings - 1) half periods between the first and the last.
+    Returns (frequency or None, number of crossings)."""
     s = u - u.mean()
     k = np.nonzero(np.sign(s[:-1]) * np.sign(s[1:]) < 0)[0]
     if len(k) < 3:
@@ -453,49 +488,121 @@ def decay_damping_ratio(t, u, f):
     return -slope / (2 * math.pi * f)
 
 
+def rounded(value, digits=5):
+    return None if value is None else round(float(value), digits)
+
+
+def analyse(t, u):
+    """Frequencies and damping ratio of a tip history (None if too short)."""
+    if len(t) < 20:
+        return {}
+    f_peak = peak_frequency(t, u)
+    f_zero, n_crossings = zero_crossing_frequency(t, u)
+    return {
+        "f_peak_Hz": rounded(f_peak),
+        "f_zero_crossings_Hz": rounded(f_zero),
+        "zero_crossings": n_crossings,
+        "xi_amplitude_decay": rounded(decay_damping_ratio(t, u, f_peak)),
+    }
+
+
+def tip_history(model, workdir):
+    """The tip motion from the .dat file, with t = 0 at the end of the
+    static step (total time 1); writes WORKDIR/tip_history.csv. Returns t
+    and the x-displacement of the block's centre of mass."""
+    times, blocks = read_displacements(workdir / (JOB + ".dat"))
+    nodes, weights = model["tip_nodes"], model["tip_weights"]
+    centre = np.array([sum(w * np.array(b[n]) for n, w in zip(nodes, weights)) for b in blocks])
+    nodal_mean = np.array([np.mean([b[n][0] for n in nodes]) for b in blocks])
+    axis = np.array([b[model["axis_node"]][0] for b in blocks])
+    static_end = np.nonzero(np.isclose(times, 1.0))[0]
+    if len(static_end) == 0:
+        sys.exit("no output at the end of the static step in %s" % (workdir / (JOB + ".dat")))
+    keep = np.arange(static_end[-1], len(times))
+    t = times[keep] - 1.0
+    with open(workdir / "tip_history.csv", "w") as stream:
+        stream.write("# ccx tip motion of material 2 [mm]: u = volume-weighted mean (its centre "
+                     "of mass), u_x_nodal_mean, u_x_axis_node (node %d)\n" % model["axis_node"])
+        stream.write("t,u_x,u_y,u_z,u_x_nodal_mean,u_x_axis_node\n")
+        for k in keep:
+            stream.write("%.6g,%.10g,%.10g,%.10g,%.10g,%.10g\n"
+                         % (times[k] - 1.0, *centre[k], nodal_mean[k], axis[k]))
+    return t, centre[keep, 0]
+
+
 def compare_with_ours(csv_path, t, ux):
-    """Our tip_trajectory.csv through the same estimators, and the largest
-    difference of the two histories if they share their times."""
+    """Our tip_trajectory.csv, cut at the end time of the ccx run, through
+    the same estimators, and the differences of the two histories if they
+    share their times."""
     with open(csv_path) as stream:
         lines = [line for line in stream if not line.startswith("#")]
     names = lines[0].strip().split(",")
     data = np.array([[float(v) for v in line.split(",")] for line in lines[1:]])
     t_ours, u_ours = data[:, names.index("t")], data[:, names.index("u_x")]
-    ours = {"file": Path(csv_path).name, "tip_u_x_t0_mm": float(u_ours[0])}
-    if len(t_ours) > 20:
-        f_peak = peak_frequency(t_ours, u_ours)
-        ours["f_peak_Hz"] = round(f_peak, 5)
-        f_zero = zero_crossing_frequency(t_ours, u_ours)[0]
-        ours["f_zero_crossings_Hz"] = round(f_zero, 5) if f_zero else None
-        xi = decay_damping_ratio(t_ours, u_ours, f_peak)
-        ours["xi_amplitude_decay"] = round(xi, 5) if xi is not None else None
+    within = t_ours <= t[-1] + 1e-9
+    t_ours, u_ours = t_ours[within], u_ours[within]
+    ours = {"file": str(csv_path), "tip_u_x_t0_mm": rounded(u_ours[0], 4)}
+    ours.update(analyse(t_ours, u_ours))
     n = min(len(t), len(t_ours))
     if np.allclose(t[:n], t_ours[:n], atol=1e-6):
-        ours["max_abs_difference_u_x_mm"] = round(float(np.abs(ux[:n] - u_ours[:n]).max()), 4)
-        ours["rms_difference_u_x_mm"] = round(float(np.sqrt(np.mean((ux[:n] - u_ours[:n]) ** 2))), 4)
+        difference = ux[:n] - u_ours[:n]
+        ours["max_abs_difference_u_x_mm"] = rounded(np.abs(difference).max(), 4)
+        ours["rms_difference_u_x_mm"] = rounded(np.sqrt(np.mean(difference**2)), 4)
     return ours
 
 
+def caveats(options):
+    law = (
+        "ccx ARRUDA-BOYCE with locking stretch %g and D = 2/kappa: our neo-Hookean energy up to "
+        "< 1e-8 relative" % ARRUDA_BOYCE_LOCKING_STRETCH
+        if options.law == "arruda-boyce" else
+        "ccx NEO HOOKE (C10 = mu/2, D1 = 2/kappa): volumetric term (J-1)^2/D1 instead of our "
+        "kappa/4 (J^2 - 1 - 2 ln J); same small-strain moduli, different at finite volume change")
+    damping = (
+        "Rayleigh damping (*DAMPING, BETA = zeta) is global in ccx 2.20: it also damps the tip "
+        "block, which has no damping in our model"
+        if options.damping else "run without damping (--no-damping); ours is damped")
+    hold = (
+        "hold as *DLOAD pressure: a follower load on the deformed faces (ours: a dead nominal "
+        "traction)"
+        if options.hold_load == "pressure" else
+        "hold as *CLOAD consistent nodal forces: a dead load, as ours")
+    return [
+        law, damping, hold,
+        "hold released in full at the start of the dynamic step (ours: HHT-weighted, 25 % of it "
+        "still acts in the first time step)",
+        "wall time is the whole ccx run (input, static step, dynamic step, .dat output)",
+    ]
+
+
 # ---------------------------------------------------------------------------
-def main():
+def parse_arguments():
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("--workdir", default=str(REPOSITORY / "output" / "calculix_peer"),
-                        help="directory for job.inp and ccx's output (default: output/calculix_peer of the repository)")
-    parser.add_argument("--mesh", default=str(REPOSITORY / CASE["mesh"]), help="gmsh MSH 2.2 mesh (default: %s)" % CASE["mesh"])
-    parser.add_argument("--end-time", type=float, default=CASE["end_time"], help="end of the oscillation [s] (default: 5.25)")
+                        help="directory for job.inp and ccx's output (default: "
+                        "output/calculix_peer in the repository)")
+    parser.add_argument("--mesh", default=str(REPOSITORY / CASE["mesh"]),
+                        help="gmsh MSH 2.2 mesh (default: %s)" % CASE["mesh"])
+    parser.add_argument("--end-time", type=float, default=CASE["end_time"],
+                        help="end of the oscillation [s] (default: %g)" % CASE["end_time"])
     parser.add_argument("--threads", type=int, default=1, help="threads for ccx (default: 1)")
     parser.add_argument("--law", choices=("arruda-boyce", "neo-hooke"), default="arruda-boyce",
-                        help="ccx potential: arruda-boyce (large locking stretch: our energy exactly, default) "
-                        "or neo-hooke (ccx's volumetric term (J-1)^2/D1)")
+                        help="ccx potential: arruda-boyce with a large locking stretch (our "
+                        "energy; default) or neo-hooke (volumetric term (J-1)^2/D1)")
     parser.add_argument("--hold-load", choices=("pressure", "cload"), default="pressure",
-                        help="hold as *DLOAD pressure (follower, default) or *CLOAD nodal forces (dead, as ours)")
-    parser.add_argument("--no-damping", dest="damping", action="store_false", help="omit the Rayleigh damping")
-    parser.add_argument("--ccx", default="ccx", help="the ccx executable (default: ccx on the PATH)")
+                        help="the hold as *DLOAD pressure (a follower load; default) or as "
+                        "*CLOAD nodal forces (a dead load, as ours)")
+    parser.add_argument("--no-damping", dest="damping", action="store_false",
+                        help="omit the Rayleigh damping")
+    parser.add_argument("--ccx", default="ccx", help="the ccx executable (default: ccx)")
     parser.add_argument("--compare", metavar="CSV",
-                        help="our tip_trajectory.csv (e.g. output/vertical_ds20_3d/tip_trajectory.csv): apply the same "
-                        "estimators to it and compare the histories")
-    options = parser.parse_args()
+                        help="our tip_trajectory.csv (e.g. output/vertical_ds20_3d/"
+                        "tip_trajectory.csv): apply the same estimators and compare")
+    return parser.parse_args()
 
+
+def main():
+    options = parse_arguments()
     ccx = shutil.which(options.ccx)
     if ccx is None:
         sys.exit("ccx not found (%s); on Debian: apt-get install calculix-ccx" % options.ccx)
@@ -503,63 +610,29 @@ def main():
 
     workdir = Path(options.workdir)
     workdir.mkdir(parents=True, exist_ok=True)
-    job = "job"
-    for suffix in (".dat", ".sta", ".frd", ".cvg"):
-        (workdir / (job + suffix)).unlink(missing_ok=True)
+    for suffix in (".dat", ".sta", ".frd", ".cvg", ".log"):
+        (workdir / (JOB + suffix)).unlink(missing_ok=True)
 
-    # model and densities from the masses (the mesh's volume is not the
-    # revolved section's, so the scene prescribes masses, not densities)
     model = build_model(options.mesh)
-    fraction = CASE["model_fraction"]
-    densities = {}
-    for name, key in (("SILICONE", "silicone"), ("BLOCK", "block")):
-        volume = model["elements"][name]["volumes"].sum()
-        densities[name] = CASE[key]["mass"] * fraction / volume
-    total_hold = write_input(workdir / (job + ".inp"), model, options, densities)
+    densities = densities_from_masses(model)
+    hold_force = write_input(workdir / (JOB + ".inp"), model, options, densities)
     n_nodes = len(model["node_ids"])
-    n_elements = sum(len(b["ids"]) for b in model["elements"].values())
-    constrained = set()
-    for boundary, (first, last) in CASE["fixed"].items():
-        for n in model["sets"]["NB%d" % boundary]:
-            constrained.update((int(n), d) for d in range(first, last + 1))
-    n_free_dofs = 3 * n_nodes - len(constrained)
+    n_elements = sum(len(e["ids"]) for e in model["elements"].values())
+    n_dofs, n_free_dofs = count_dofs(model)
 
     print("CalculiX %s peer of %s" % (version, CASE["scene"]))
-    print("  mesh %s: %d nodes, %d C3D4 elements, %d dofs (%d free)" % (
-        Path(options.mesh).name, n_nodes, n_elements, 3 * n_nodes, n_free_dofs))
-    print("  densities: silicone %.6g, block %.6g kg/mm^3; hold force %.5g mN on %d faces" % (
-        densities["SILICONE"], densities["BLOCK"], total_hold, len(model["hold"])))
-    print("  running ccx in %s with %d thread(s), end time %g s ..." % (workdir, options.threads, options.end_time))
-    sys.stdout.flush()
+    print("  mesh %s: %d nodes, %d C3D4 elements, %d dofs (%d unconstrained)"
+          % (Path(options.mesh).name, n_nodes, n_elements, n_dofs, n_free_dofs))
+    print("  densities: silicone %.6g, block %.6g kg/mm^3; hold %.5g mN on %d faces"
+          % (densities["SILICONE"], densities["BLOCK"], hold_force, len(model["hold"])))
+    print("  running ccx in %s, %d thread(s), end time %g s ..."
+          % (workdir, options.threads, options.end_time), flush=True)
 
-    wall, peak_kib, log_text = run_ccx(ccx, workdir, job, options.threads)
+    wall, peak_kib, log_text = run_ccx(ccx, workdir, options.threads)
 
-    # tip history: the static state (the last output of step 1, total
-    # time 1) is t = 0; the dynamic step's outputs follow at 1 + t.
-    times, blocks = read_displacements(workdir / (job + ".dat"))
-    weights = model["tip_weights"]
-    tip = model["tip_nodes"]
-    u_weighted = np.array([sum(w * np.array(b[n]) for n, w in zip(tip, weights)) for b in blocks])
-    u_mean = np.array([np.mean([b[n] for n in tip], axis=0) for b in blocks])
-    u_axis = np.array([b[model["axis_node"]] for b in blocks])
-    static_end = np.nonzero(np.isclose(times, 1.0))[0]
-    if len(static_end) == 0:
-        sys.exit("no output at the end of the static step in %s" % (workdir / (job + ".dat")))
-    keep = np.arange(static_end[-1], len(times))
-    t = times[keep] - 1.0
-    steps = read_increments(workdir / (job + ".sta"))
-
-    with open(workdir / "tip_history.csv", "w") as stream:
-        stream.write("# ccx tip motion of material 2: volume-weighted mean (= centre of mass), "
-                     "plain nodal mean, node %d on the axis; mm\n" % model["axis_node"])
-        stream.write("t,u_x,u_y,u_z,u_x_nodal_mean,u_x_axis_node\n")
-        for k in keep:
-            stream.write("%.6g,%.10g,%.10g,%.10g,%.10g,%.10g\n" % (
-                times[k] - 1.0, *u_weighted[k], u_mean[k][0], u_axis[k][0]))
-
-    ux = u_weighted[keep, 0]
+    t, ux = tip_history(model, workdir)
+    steps = read_increments(workdir / (JOB + ".sta"))
     match = re.search(r"Total CalculiX Time:\s*(\S+)", log_text)
-    ccx_seconds = float(match.group(1)) if match else None
     result = {
         "case": CASE["scene"],
         "solver": "CalculiX ccx",
@@ -568,11 +641,11 @@ def main():
         "nodes": n_nodes,
         "elements": n_elements,
         "element_type": "C3D4",
-        "dofs": 3 * n_nodes,
-        "free_dofs": n_free_dofs,
+        "dofs": n_dofs,
+        "unconstrained_dofs": n_free_dofs,
         "threads": options.threads,
         "wall_seconds": round(wall, 3),
-        "ccx_reported_seconds": ccx_seconds,
+        "ccx_reported_seconds": float(match.group(1)) if match else None,
         "peak_memory_MiB": round(peak_kib / 1024, 1),
         "end_time": options.end_time,
         "time_step": CASE["time_step"],
@@ -582,65 +655,52 @@ def main():
         "dynamic_increments": steps.get(2, {}).get("increments"),
         "dynamic_iterations": steps.get(2, {}).get("iterations"),
         "material_law": options.law,
-        "damping": "Rayleigh beta = %.6g s (global)" % CASE["silicone"]["zeta"] if options.damping else "none",
+        "damping": ("Rayleigh, beta = %.6g s, global" % CASE["silicone"]["zeta"]
+                    if options.damping else "none"),
         "hold_load": options.hold_load,
-        "hold_force_mN": total_hold,
-        "tip_quantity": "volume-weighted mean x-displacement of material 2 (its centre of mass)",
-        "tip_u_x_t0_mm": float(ux[0]),
-        "tip_u_x_min_mm": float(ux.min()),
-        "tip_u_x_max_mm": float(ux.max()),
-        "tip_u_x_mean_mm": float(ux.mean()),
-        "reference": CASE["reference"],
+        "hold_force_mN": rounded(hold_force, 3),
+        "tip_quantity": "x-displacement of the centre of mass of material 2 "
+                        "(volume-weighted mean of its nodal displacements)",
+        "tip_u_x_t0_mm": rounded(ux[0], 4),
+        "tip_u_x_min_mm": rounded(ux.min(), 4),
+        "tip_u_x_max_mm": rounded(ux.max(), 4),
+        "tip_u_x_mean_mm": rounded(ux.mean(), 4),
     }
-    if len(t) > 20:
-        f_peak = peak_frequency(t, ux)
-        f_zero, n_crossings = zero_crossing_frequency(t, ux)
-        xi = decay_damping_ratio(t, ux, f_peak)
-        result.update({
-            "f_peak_Hz": round(f_peak, 5),
-            "f_zero_crossings_Hz": round(f_zero, 5) if f_zero else None,
-            "zero_crossings": n_crossings,
-            "xi_amplitude_decay": round(xi, 5) if xi is not None else None,
-            "f_peak_relative_to_ours": round(f_peak / CASE["reference"]["f_peak_Hz"] - 1, 5),
-        })
-
+    result.update(analyse(t, ux))
+    if result.get("f_peak_Hz"):
+        result["f_peak_relative_to_ours"] = rounded(
+            result["f_peak_Hz"] / CASE["reference"]["f_peak_Hz"] - 1)
+    result["reference_ours"] = CASE["reference"]
     if options.compare:
         result["ours"] = compare_with_ours(options.compare, t, ux)
-
-    caveats = [
-        "ccx ARRUDA-BOYCE with locking stretch %g and D = 2/kappa: our neo-Hookean energy up to < 1e-8 "
-        "relative" % ARRUDA_BOYCE_LOCKING_STRETCH if options.law == "arruda-boyce" else
-        "ccx NEO HOOKE (C10 = mu/2, D1 = 2/kappa): volumetric term (J-1)^2/D1 instead of our "
-        "kappa/4 (J^2 - 1 - 2 ln J); same small-strain moduli, differs at finite volume change",
-        "Rayleigh damping (*DAMPING, BETA = zeta) is global in ccx 2.20: it also damps the tip block, "
-        "which has no damping in our model" if options.damping else "run without damping (--no-damping)",
-        "hold as *DLOAD pressure: a follower load on the deformed faces (ours is a dead nominal traction)"
-        if options.hold_load == "pressure" else "hold as *CLOAD consistent nodal forces: dead load, as ours",
-        "hold released in full at the start of the dynamic step (ours: HHT-weighted, 25 % of it in the first step)",
-        "wall time is the whole ccx run (input, static step, dynamic step, .dat output)",
-    ]
-    result["caveats"] = caveats
+    result["caveats"] = caveats(options)
     (workdir / "calculix_peer.json").write_text(json.dumps(result, indent=2) + "\n")
 
-    print("  wall time %.2f s (%d thread(s)), peak memory %.1f MiB" % (wall, options.threads, peak_kib / 1024))
-    print("  increments: static %s, dynamic %s (%s Newton iterations)" % (
-        result["static_increments"], result["dynamic_increments"], result["dynamic_iterations"]))
-    print("  tip u_x at t = 0: %.4g mm (ours %.3g mm); range %.4g .. %.4g mm" % (
-        ux[0], CASE["reference"]["u_x_t0"], ux.min(), ux.max()))
-    if "f_peak_Hz" in result:
-        print("  tip frequency: FFT peak %.4f Hz, zero crossings %s Hz (%d crossings); ours %.3f Hz (%+.2f %%)" % (
-            result["f_peak_Hz"], "%.4f" % f_zero if f_zero else "n/a", n_crossings,
-            CASE["reference"]["f_peak_Hz"], 100 * result["f_peak_relative_to_ours"]))
-        if result["xi_amplitude_decay"] is not None:
-            print("  damping ratio from the amplitude decay: %.4f (ours, modal fit: %.3f)" % (
-                result["xi_amplitude_decay"], CASE["reference"]["xi_modal_fit"]))
+    reference = CASE["reference"]
+    print("  wall time %.2f s (%d thread(s)), peak memory %.1f MiB"
+          % (wall, options.threads, peak_kib / 1024))
+    print("  increments: static %s, dynamic %s (%s Newton iterations)"
+          % (result["static_increments"], result["dynamic_increments"],
+             result["dynamic_iterations"]))
+    print("  tip u_x at t = 0: %.4f mm (ours %.2f mm); range %.3f .. %.3f mm"
+          % (ux[0], reference["u_x_t0_mm"], ux.min(), ux.max()))
+    if result.get("f_peak_Hz"):
+        print("  tip frequency: FFT peak %.4f Hz, zero crossings %s Hz (%d crossings); "
+              "ours %.3f Hz (%+.2f %%)"
+              % (result["f_peak_Hz"], result["f_zero_crossings_Hz"], result["zero_crossings"],
+                 reference["f_peak_Hz"], 100 * result["f_peak_relative_to_ours"]))
+    if result.get("xi_amplitude_decay") is not None:
+        print("  damping ratio from the amplitude decay: %.4f (ours, modal fit: %.3f)"
+              % (result["xi_amplitude_decay"], reference["xi_modal_fit"]))
     if "ours" in result:
         ours = result["ours"]
-        print("  ours with the same estimators: FFT peak %s Hz, zero crossings %s Hz, xi %s; "
-              "max |u_x(ccx) - u_x(ours)| = %s mm" % (
-                  ours.get("f_peak_Hz"), ours.get("f_zero_crossings_Hz"), ours.get("xi_amplitude_decay"),
-                  ours.get("max_abs_difference_u_x_mm", "n/a (different times)")))
-    print("  caveats:\n    - " + "\n    - ".join(caveats))
+        print("  ours, same estimators: FFT peak %s Hz, zero crossings %s Hz, xi %s"
+              % (ours.get("f_peak_Hz"), ours.get("f_zero_crossings_Hz"),
+                 ours.get("xi_amplitude_decay")))
+        if "max_abs_difference_u_x_mm" in ours:
+            print("  u_x(ccx) - u_x(ours): max %.3f mm, rms %.3f mm"
+                  % (ours["max_abs_difference_u_x_mm"], ours["rms_difference_u_x_mm"]))
+    print("  caveats:\n    - " + "\n    - ".join(result["caveats"]))
     print("  written: %s, %s" % (workdir / "calculix_peer.json", workdir / "tip_history.csv"))
 
 

@@ -188,6 +188,7 @@ namespace SoftRobot
       unsigned int max_iterations;
       double       absolute_tolerance;
       double       relative_tolerance;
+      std::string  tangent_update;
       bool         line_search;
       unsigned int max_line_search_steps;
       bool         verbose;

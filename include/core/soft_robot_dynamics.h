@@ -57,6 +57,7 @@
 #include <deal.II/fe/fe_system.h>
 #include <deal.II/fe/mapping.h>
 #include <deal.II/lac/affine_constraints.h>
+#include <deal.II/lac/solver_control.h>
 #include <deal.II/lac/trilinos_sparse_matrix.h>
 #include <deal.II/lac/trilinos_vector.h>
 #include <fstream>
@@ -65,6 +66,14 @@
 #include <memory>
 #include <time_integration/hht_stepper.h>
 #include <vector>
+
+// The prepared linear solvers are held by pointer; their definitions are
+// needed only where they are used.
+namespace dealii::TrilinosWrappers
+{
+  class SolverDirect;
+  class PreconditionAMG;
+} // namespace dealii::TrilinosWrappers
 
 namespace SoftRobot
 {
@@ -251,6 +260,19 @@ namespace SoftRobot
     solve_linear_system(TrilinosWrappers::SparseMatrix      &matrix,
                         const TrilinosWrappers::MPI::Vector &rhs,
                         TrilinosWrappers::MPI::Vector       &solution);
+    // The two halves of solve_linear_system(): factorize the matrix (or
+    // build the multigrid hierarchy), and solve with what was prepared,
+    // as often as needed.
+    void
+    prepare_linear_solver(TrilinosWrappers::SparseMatrix &matrix);
+    unsigned int
+    solve_prepared_system(const TrilinosWrappers::MPI::Vector &rhs,
+                          TrilinosWrappers::MPI::Vector       &solution);
+    // Modified Newton: the HHT matrix of a step of size dt from the
+    // stiffness and damping of the last converged state, prepared for the
+    // linear solver.
+    void
+    prepare_step_tangent(const double dt);
     void
     compute_initial_acceleration();
     void
@@ -258,14 +280,19 @@ namespace SoftRobot
 
     // Newton's method for $\mathbf r(\mathbf u) = 0$, where `evaluate`
     // assembles the residual and the tangent matrix at a trial $\mathbf u$.
+    // With `modified`, the matrix prepared before the call is used for all
+    // iterations until one converges too slowly (see the parameter
+    // `Tangent update`), and the evaluations assemble no matrix.
     using ResidualEvaluator =
       std::function<AssemblyResult(const TrilinosWrappers::MPI::Vector &,
+                                   const bool with_matrix,
                                    TrilinosWrappers::MPI::Vector &)>;
     AssemblyResult
     newton_solve(TrilinosWrappers::MPI::Vector &u,
                  const ResidualEvaluator       &evaluate,
                  const double                   force_scale,
-                 unsigned int                  &iterations);
+                 unsigned int                  &iterations,
+                 const bool                     modified = false);
     void
     output_results(const unsigned int output_index);
     void
@@ -313,6 +340,8 @@ namespace SoftRobot
     };
     void
     setup_cell_geometry();
+    void
+    write_run_statistics(const double wall_time) const;
 
     // The scalar $\zeta$, $\rho_0$, section factor per cell.
     const Parameters::Material &
@@ -356,6 +385,16 @@ namespace SoftRobot
     bool                           has_damping = false;
     TrilinosWrappers::MPI::Vector  gravity_force;
     TrilinosWrappers::SparseMatrix system_matrix;
+    // True while system_matrix holds the stiffness of the state `current`
+    // (after the assembly at the end of a step), from which the next
+    // step's modified-Newton matrix is formed.
+    bool system_matrix_is_state_stiffness = false;
+    // The prepared linear solver: the factorization of the direct solver
+    // or the multigrid hierarchy.
+    SolverControl                                     direct_solver_control;
+    std::unique_ptr<TrilinosWrappers::SolverDirect>   direct_solver;
+    std::unique_ptr<TrilinosWrappers::PreconditionAMG> amg_preconditioner;
+    const TrilinosWrappers::SparseMatrix             *prepared_matrix = nullptr;
     State                          current;
     State                          previous;
 
@@ -371,6 +410,7 @@ namespace SoftRobot
     unsigned int total_newton_iterations = 0;
     unsigned int total_linear_iterations = 0;
     unsigned int total_cutbacks          = 0;
+    unsigned int total_tangent_updates   = 0;
     unsigned int last_newton_iterations  = 0;
     double       last_residual           = 0.;
 

@@ -545,6 +545,20 @@ namespace SoftRobot
                         "largest of the norms of the external forces, the "
                         "internal and inertial forces, and the step's first "
                         "residual.");
+      prm.declare_entry(
+        "Tangent update",
+        "every step",
+        Patterns::Selection("every step|every iteration"),
+        "When the time steps' Newton method rebuilds its matrix. 'every "
+        "iteration': Newton's method proper, a new tangent and a new "
+        "factorization (or multigrid hierarchy) in every iteration. 'every "
+        "step': the tangent of the last converged state, built and "
+        "factorized once per step, for all iterations of the step (modified "
+        "Newton); it is rebuilt at the current iterate when an iteration "
+        "reduces the residual by less than a factor of four. Both converge "
+        "to the same tolerance; 'every step' is several times cheaper for "
+        "smooth motions. The static equilibrium always uses 'every "
+        "iteration'.");
       prm.declare_entry("Line search",
                         "true",
                         Patterns::Bool(),
@@ -569,6 +583,7 @@ namespace SoftRobot
       max_iterations        = prm.get_integer("Max iterations");
       absolute_tolerance    = prm.get_double("Absolute tolerance");
       relative_tolerance    = prm.get_double("Relative tolerance");
+      tangent_update        = prm.get("Tangent update");
       line_search           = prm.get_bool("Line search");
       max_line_search_steps = prm.get_integer("Max line search steps");
       verbose               = prm.get_bool("Verbose");

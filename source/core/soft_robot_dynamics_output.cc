@@ -197,7 +197,7 @@ namespace SoftRobot
               Tensor<2, dim> F = G;
               for (unsigned int d = 0; d < dim; ++d)
                 F[d][d] += 1.;
-              law.evaluate(G, response);
+              law.evaluate_stress(G, response);
               mean_sigma += law.cauchy_stress(F, response.second_piola);
               mean_J += determinant(F);
             }

@@ -7,6 +7,7 @@
 #include <core/soft_robot_dynamics.h>
 #include <deal.II/base/function_parser.h>
 #include <deal.II/base/quadrature_lib.h>
+#include <deal.II/base/utilities.h>
 #include <deal.II/dofs/dof_tools.h>
 #include <deal.II/fe/fe_q.h>
 #include <deal.II/fe/fe_simplex_p.h>
@@ -18,8 +19,11 @@
 #include <deal.II/grid/grid_tools.h>
 #include <deal.II/lac/dynamic_sparsity_pattern.h>
 #include <deal.II/lac/sparsity_tools.h>
+#include <deal.II/lac/trilinos_precondition.h>
+#include <deal.II/lac/trilinos_solver.h>
 #include <deal.II/numerics/vector_tools.h>
 #include <filesystem>
+#include <iomanip>
 #include <set>
 #include <sstream>
 
@@ -669,18 +673,77 @@ namespace SoftRobot
           }
       }
 
-    pcout << "Finished " << step_number << " steps in "
-          << wall_clock.wall_time() << " s: " << total_newton_iterations
-          << " Newton iterations, " << total_linear_iterations
-          << " linear iterations, " << total_cutbacks << " time-step cutbacks."
+    const double wall_time = wall_clock.wall_time();
+    pcout << "Finished " << step_number << " steps in " << wall_time
+          << " s: " << total_newton_iterations << " Newton iterations, "
+          << total_linear_iterations << " linear iterations, "
+          << total_tangent_updates << " matrix factorizations or multigrid "
+          << "set-ups, " << total_cutbacks << " time-step cutbacks."
           << std::endl;
     computing_timer.print_summary();
+    write_run_statistics(wall_time);
 
     if (parameters.spectral_analysis)
       {
         trajectory.close();
         analyse_trajectory();
       }
+  }
+
+
+
+  // @sect4{SoftRobotDynamics::write_run_statistics}
+  //
+  // The cost of the run in a small machine-readable file,
+  // `run_statistics.json` in the output directory, for benchmarks and
+  // scripts: mesh size, counts of the solver's work, the wall time of each
+  // timed section (the largest over the processes), and the peak resident
+  // memory, summed over the processes.
+  template <int dim>
+  void
+  SoftRobotDynamics<dim>::write_run_statistics(const double wall_time) const
+  {
+    Utilities::System::MemoryStats memory;
+    Utilities::System::get_memory_stats(memory);
+    const double peak_memory_mb =
+      Utilities::MPI::sum(static_cast<double>(memory.VmHWM), mpi_communicator) /
+      1024.;
+    std::map<std::string, double> sections =
+      computing_timer.get_summary_data(TimerOutput::total_wall_time);
+    for (auto &[name, seconds] : sections)
+      seconds = Utilities::MPI::max(seconds, mpi_communicator);
+    if (Utilities::MPI::this_mpi_process(mpi_communicator) != 0)
+      return;
+
+    std::ofstream file(parameters.output_directory + "/run_statistics.json");
+    file << std::setprecision(8) << "{\n"
+         << "  \"dimension\": " << dim << ",\n"
+         << "  \"cells\": " << triangulation.n_global_active_cells() << ",\n"
+         << "  \"dofs\": " << dof_handler.n_dofs() << ",\n"
+         << "  \"degree\": " << parameters.degree << ",\n"
+         << "  \"mpi_processes\": "
+         << Utilities::MPI::n_mpi_processes(mpi_communicator) << ",\n"
+         << "  \"linear_solver\": \"" << parameters.LinearSolver::type
+         << "\",\n"
+         << "  \"tangent_update\": \"" << parameters.tangent_update << "\",\n"
+         << "  \"end_time\": " << current.time << ",\n"
+         << "  \"steps\": " << step_number << ",\n"
+         << "  \"newton_iterations\": " << total_newton_iterations << ",\n"
+         << "  \"linear_iterations\": " << total_linear_iterations << ",\n"
+         << "  \"factorizations_or_amg_setups\": " << total_tangent_updates
+         << ",\n"
+         << "  \"cutbacks\": " << total_cutbacks << ",\n"
+         << "  \"wall_seconds\": " << wall_time << ",\n"
+         << "  \"peak_memory_mb\": " << peak_memory_mb << ",\n"
+         << "  \"sections\": {";
+    bool first = true;
+    for (const auto &[name, seconds] : sections)
+      {
+        file << (first ? "\n" : ",\n") << "    \"" << name
+             << "\": " << seconds;
+        first = false;
+      }
+    file << "\n  }\n}\n";
   }
 
 
@@ -694,6 +757,8 @@ namespace SoftRobot
   template void SoftRobotDynamics<dim>::setup_system();                     \
   template void SoftRobotDynamics<dim>::assemble_mass_matrix();             \
   template void SoftRobotDynamics<dim>::setup_cell_geometry();              \
+  template void SoftRobotDynamics<dim>::write_run_statistics(const double)  \
+    const;                                                                  \
   template const Parameters::Material &SoftRobotDynamics<dim>::material_of( \
     const typename DoFHandler<dim>::active_cell_iterator &) const;          \
   template void SoftRobotDynamics<dim>::run();                              \

@@ -46,6 +46,8 @@ namespace SoftRobot
       u_trial, previous.u, previous.v, previous.a, dt, current.v, current.a);
     AssemblyResult assembly =
       assemble_internal_force(u_trial, with_matrix, current.internal_force);
+    if (with_matrix)
+      system_matrix_is_state_stiffness = false;
     if (has_damping)
       damping_matrix.vmult(current.damping_force, current.v);
     else
@@ -84,31 +86,49 @@ namespace SoftRobot
   // lowers the residual norm or, in static problems, the total potential
   // energy: equilibrium is its minimum, and the residual norm alone is a
   // poor guide when a slender body rotates far; near the solution, where
-  // energy differences drown in round-off, the residual decides. `evaluate` computes the residual and
-  // tangent at a trial displacement. The iteration has converged when the
-  // residual is below the absolute tolerance, or below the relative
-  // tolerance times a force scale: the largest of the external forces, the
-  // forces that balance in the residual (internal and inertial), and the
-  // first residual. The forces set the level of round-off, so a relative
-  // tolerance of $10^{-12}$ is attainable however small the motion; the
-  // iteration also stops when the update is at round-off level relative to
-  // the displacement. Every failure -- too many iterations, a linear
-  // solver that does not converge, a non-finite residual, an inverted
-  // element that the line search cannot avoid -- throws StepFailure, and the
-  // caller decides what to do.
+  // energy differences drown in round-off, the residual decides.
+  // `evaluate` computes the residual, and the tangent if asked, at a trial
+  // displacement. The iteration has converged when the residual is below
+  // the absolute tolerance, or below the relative tolerance times a force
+  // scale: the largest of the external forces, the forces that balance in
+  // the residual (internal and inertial), and the first residual. The
+  // forces set the level of round-off, so a relative tolerance of
+  // $10^{-12}$ is attainable however small the motion; the iteration also
+  // stops when the update is at round-off level relative to the
+  // displacement. Every failure -- too many iterations, a linear solver
+  // that does not converge, a non-finite residual, an inverted element that
+  // the line search cannot avoid -- throws StepFailure, and the caller
+  // decides what to do.
+  //
+  // In the modified variant the matrix prepared by the caller (the tangent
+  // of the last converged state) serves all iterations, and the
+  // evaluations compute residuals only: they need first derivatives of the
+  // energy instead of second ones, and no factorization. The price is
+  // linear instead of quadratic convergence, at a rate given by how much
+  // the tangent changes within the step -- for a time step that resolves
+  // the motion, a factor of about 5 to 10 per iteration on the bellows,
+  // whose geometric stiffness changes noticeably within a step. That is
+  // still cheaper: an iteration with the old matrix costs a residual
+  // assembly and a back substitution, a fifteenth of an iteration with a
+  // new matrix. When an iteration reduces the residual by less than a
+  // factor of four, when `Max iterations` iterations have used the same old
+  // matrix, or when the line search fails with it, the tangent is rebuilt
+  // at the current iterate. The modified variant is allowed twice the
+  // iterations of the full one.
   template <int dim>
   typename SoftRobotDynamics<dim>::AssemblyResult
   SoftRobotDynamics<dim>::newton_solve(TrilinosWrappers::MPI::Vector &u,
                                        const ResidualEvaluator       &evaluate,
                                        const double  force_scale,
-                                       unsigned int &iterations)
+                                       unsigned int &iterations,
+                                       const bool    modified)
   {
     TrilinosWrappers::MPI::Vector residual(locally_owned_dofs,
                                            mpi_communicator);
     TrilinosWrappers::MPI::Vector trial_residual(residual), update(residual),
       trial(residual);
 
-    AssemblyResult assembly = evaluate(u, residual);
+    AssemblyResult assembly = evaluate(u, !modified, residual);
     if (assembly.inverted_point_found)
       throw StepFailure(
         "the predicted state has an inverted element (det F = " +
@@ -116,6 +136,11 @@ namespace SoftRobot
     double norm      = residual.l2_norm();
     double reference = std::max({force_scale, norm, assembly.force_scale});
     double potential_energy = assembly.potential_energy;
+    // In the modified variant: whether the prepared matrix is the tangent
+    // at the current iterate, and whether it must become so.
+    bool         tangent_is_current      = !modified;
+    bool         rebuild_tangent         = false;
+    unsigned int iterations_with_tangent = 0;
 
     for (iterations = 0;; ++iterations)
       {
@@ -125,7 +150,9 @@ namespace SoftRobot
         if (norm <= parameters.absolute_tolerance ||
             norm <= parameters.NonlinearSolver::relative_tolerance * reference)
           break;
-        if (iterations == parameters.NonlinearSolver::max_iterations)
+        // The modified variant may take twice as many (cheaper) iterations.
+        if (iterations == (modified ? 2 : 1) *
+                            parameters.NonlinearSolver::max_iterations)
           {
             std::ostringstream message;
             message << "Newton's method did not converge in " << iterations
@@ -133,9 +160,18 @@ namespace SoftRobot
             throw StepFailure(message.str());
           }
 
+        if (modified && rebuild_tangent)
+          {
+            assembly = evaluate(u, true, residual);
+            prepare_linear_solver(system_matrix);
+            tangent_is_current = true;
+            rebuild_tangent    = false;
+          }
+        else if (!modified)
+          prepare_linear_solver(system_matrix);
         residual *= -1.;
         const unsigned int linear_iterations =
-          solve_linear_system(system_matrix, residual, update);
+          solve_prepared_system(residual, update);
         total_linear_iterations += linear_iterations;
         if (update.linfty_norm() <= 1e-14 * u.linfty_norm())
           break;
@@ -147,13 +183,14 @@ namespace SoftRobot
         bool               accepted    = false;
         bool               trial_valid = false;
         double             trial_norm  = 0.;
+        const double       old_norm    = norm;
         const unsigned int max_halvings =
           parameters.line_search ? parameters.max_line_search_steps : 0;
         for (unsigned int halving = 0; halving <= max_halvings; ++halving)
           {
             trial = u;
             trial.add(step_length, update);
-            assembly   = evaluate(trial, trial_residual);
+            assembly   = evaluate(trial, !modified, trial_residual);
             trial_norm = trial_residual.l2_norm();
             trial_valid =
               !assembly.inverted_point_found && std::isfinite(trial_norm);
@@ -187,11 +224,29 @@ namespace SoftRobot
           pcout << "    Newton " << iterations << ": |r| = " << norm
                 << " (scale " << reference << "), " << linear_iterations
                 << " linear iterations, step length " << step_length
+                << (modified && !tangent_is_current ? ", old tangent" : "")
                 << std::endl;
+        if (!accepted && modified && !tangent_is_current)
+          {
+            // The old matrix led nowhere: rebuild it here and try again.
+            rebuild_tangent = true;
+            continue;
+          }
         if (!accepted)
           throw StepFailure(
             "the line search found no admissible step (min det F = " +
             std::to_string(assembly.min_jacobian) + ")");
+        if (modified)
+          {
+            if (tangent_is_current)
+              iterations_with_tangent = 0;
+            ++iterations_with_tangent;
+            tangent_is_current = false;
+            rebuild_tangent =
+              (norm > 0.25 * old_norm) ||
+              (iterations_with_tangent >=
+               parameters.NonlinearSolver::max_iterations);
+          }
       }
     last_residual = norm;
     return assembly;
@@ -207,7 +262,9 @@ namespace SoftRobot
   // rigid-body modes computed in setup_system(), passed through ML's own
   // parameter list because deal.II's interface takes only constant modes.
   // The sparse direct solver (Amesos KLU) is there for small problems and
-  // as a check.
+  // as a check. Preparing -- the factorization, or the multigrid hierarchy
+  // -- is separate from solving, so that the modified Newton method pays
+  // for it once per step.
   template <int dim>
   unsigned int
   SoftRobotDynamics<dim>::solve_linear_system(
@@ -215,59 +272,93 @@ namespace SoftRobot
     const TrilinosWrappers::MPI::Vector &rhs,
     TrilinosWrappers::MPI::Vector       &solution)
   {
+    prepare_linear_solver(matrix);
+    return solve_prepared_system(rhs, solution);
+  }
+
+
+
+  template <int dim>
+  void
+  SoftRobotDynamics<dim>::prepare_linear_solver(
+    TrilinosWrappers::SparseMatrix &matrix)
+  {
+    ++total_tangent_updates;
+    prepared_matrix = &matrix;
+    if (parameters.LinearSolver::type == "Direct")
+      {
+        TimerOutput::Scope timer_section(computing_timer, "Factorization");
+        direct_solver_control = SolverControl(1, 0);
+        direct_solver         = std::make_unique<TrilinosWrappers::SolverDirect>(
+          direct_solver_control,
+          TrilinosWrappers::SolverDirect::AdditionalData(false, "Amesos_Klu"));
+        direct_solver->initialize(matrix);
+      }
+    else
+      {
+        TimerOutput::Scope timer_section(computing_timer,
+                                         "Preconditioner setup");
+        TrilinosWrappers::PreconditionAMG::AdditionalData data;
+        data.elliptic              = true;
+        data.higher_order_elements = (parameters.degree > 1);
+        data.smoother_sweeps       = parameters.smoother_sweeps;
+        data.aggregation_threshold = parameters.aggregation_threshold;
+
+        Teuchos::ParameterList              ml_parameters;
+        std::unique_ptr<Epetra_MultiVector> constant_modes;
+        data.set_parameters(ml_parameters,
+                            constant_modes,
+                            matrix.trilinos_matrix());
+        const Epetra_Map  &map = matrix.trilinos_matrix().DomainMap();
+        Epetra_MultiVector modes(map, rigid_body_modes.size());
+        for (unsigned int k = 0; k < rigid_body_modes.size(); ++k)
+          for (unsigned int i = 0; i < rigid_body_modes[k].size(); ++i)
+            modes[k][i] = rigid_body_modes[k][i];
+        ml_parameters.set("null space: type", "pre-computed");
+        ml_parameters.set("null space: dimension", modes.NumVectors());
+        ml_parameters.set("null space: vectors", modes.Values());
+        amg_preconditioner =
+          std::make_unique<TrilinosWrappers::PreconditionAMG>();
+        amg_preconditioner->initialize(matrix, ml_parameters);
+      }
+  }
+
+
+
+  template <int dim>
+  unsigned int
+  SoftRobotDynamics<dim>::solve_prepared_system(
+    const TrilinosWrappers::MPI::Vector &rhs,
+    TrilinosWrappers::MPI::Vector       &solution)
+  {
+    TimerOutput::Scope timer_section(computing_timer, "Linear solve");
+    Assert(prepared_matrix != nullptr, ExcInternalError());
     solution                = 0.;
     unsigned int iterations = 1;
     try
       {
         if (parameters.LinearSolver::type == "Direct")
-          {
-            TimerOutput::Scope timer_section(computing_timer, "Linear solve");
-            SolverControl      control(1, 0);
-            TrilinosWrappers::SolverDirect::AdditionalData data(false,
-                                                                "Amesos_Klu");
-            TrilinosWrappers::SolverDirect solver(control, data);
-            solver.solve(matrix, solution, rhs);
-          }
+          direct_solver->solve(solution, rhs);
         else
           {
-            TrilinosWrappers::PreconditionAMG preconditioner;
-            {
-              TimerOutput::Scope timer_section(computing_timer,
-                                               "Preconditioner setup");
-              TrilinosWrappers::PreconditionAMG::AdditionalData data;
-              data.elliptic              = true;
-              data.higher_order_elements = (parameters.degree > 1);
-              data.smoother_sweeps       = parameters.smoother_sweeps;
-              data.aggregation_threshold = parameters.aggregation_threshold;
-
-              Teuchos::ParameterList              ml_parameters;
-              std::unique_ptr<Epetra_MultiVector> constant_modes;
-              data.set_parameters(ml_parameters,
-                                  constant_modes,
-                                  matrix.trilinos_matrix());
-              const Epetra_Map  &map = matrix.trilinos_matrix().DomainMap();
-              Epetra_MultiVector modes(map, rigid_body_modes.size());
-              for (unsigned int k = 0; k < rigid_body_modes.size(); ++k)
-                for (unsigned int i = 0; i < rigid_body_modes[k].size(); ++i)
-                  modes[k][i] = rigid_body_modes[k][i];
-              ml_parameters.set("null space: type", "pre-computed");
-              ml_parameters.set("null space: dimension", modes.NumVectors());
-              ml_parameters.set("null space: vectors", modes.Values());
-              preconditioner.initialize(matrix, ml_parameters);
-            }
-            TimerOutput::Scope timer_section(computing_timer, "Linear solve");
-            SolverControl      control(parameters.LinearSolver::max_iterations,
+            SolverControl control(parameters.LinearSolver::max_iterations,
                                   parameters.LinearSolver::relative_tolerance *
                                     rhs.l2_norm());
             if (parameters.LinearSolver::type == "CG")
               {
                 SolverCG<TrilinosWrappers::MPI::Vector> solver(control);
-                solver.solve(matrix, solution, rhs, preconditioner);
+                solver.solve(*prepared_matrix,
+                             solution,
+                             rhs,
+                             *amg_preconditioner);
               }
             else
               {
                 SolverGMRES<TrilinosWrappers::MPI::Vector> solver(control);
-                solver.solve(matrix, solution, rhs, preconditioner);
+                solver.solve(*prepared_matrix,
+                             solution,
+                             rhs,
+                             *amg_preconditioner);
               }
             iterations = control.last_step();
           }
@@ -324,9 +415,11 @@ namespace SoftRobot
         external.add(std::max(target - 1., 0.), traction_force);
         const ResidualEvaluator static_residual =
           [&](const TrilinosWrappers::MPI::Vector &u,
+              const bool                           with_matrix,
               TrilinosWrappers::MPI::Vector       &r) {
             AssemblyResult assembly =
-              assemble_internal_force(u, true, internal);
+              assemble_internal_force(u, with_matrix, internal);
+            system_matrix_is_state_stiffness = false;
             r = internal;
             r -= external;
             assembly.force_scale      = internal.l2_norm();
@@ -374,6 +467,7 @@ namespace SoftRobot
   {
     const AssemblyResult assembly =
       assemble_internal_force(current.u, true, current.internal_force);
+    system_matrix_is_state_stiffness = true;
     if (has_damping)
       {
         damping_matrix.copy_from(next_damping_matrix);
@@ -454,17 +548,54 @@ namespace SoftRobot
     stepper.predict_displacement(
       previous.u, previous.v, previous.a, dt, current.u);
 
+    const bool modified = (parameters.tangent_update == "every step");
+    if (modified)
+      prepare_step_tangent(dt);
+
     const ResidualEvaluator hht_residual =
       [&](const TrilinosWrappers::MPI::Vector &u,
+          const bool                           with_matrix,
           TrilinosWrappers::MPI::Vector       &r) {
-        return evaluate_residual(u, dt, true, r);
+        return evaluate_residual(u, dt, with_matrix, r);
       };
     unsigned int         iterations = 0;
-    const AssemblyResult assembly   = newton_solve(
-      current.u, hht_residual, current.external_force.l2_norm(), iterations);
+    const AssemblyResult assembly   = newton_solve(current.u,
+                                                 hht_residual,
+                                                 current.external_force.l2_norm(),
+                                                 iterations,
+                                                 modified);
     last_newton_iterations = iterations;
     total_newton_iterations += iterations;
     update_energies(assembly);
+  }
+
+
+
+  // @sect4{SoftRobotDynamics::prepare_step_tangent}
+  //
+  // The matrix of the modified Newton method for a step of size dt:
+  // $\mathbf M/(\beta\Delta t^2) + (1+\alpha)(\mathbf K_n + c_v\mathbf
+  // C_n)$, with the stiffness and damping matrices of the last converged
+  // state $\mathbf u_n$ (assembled at the end of the previous step). After
+  // a failed step the system matrix holds something else, and the
+  // stiffness of $\mathbf u_n$ is assembled again.
+  template <int dim>
+  void
+  SoftRobotDynamics<dim>::prepare_step_tangent(const double dt)
+  {
+    if (!system_matrix_is_state_stiffness)
+      {
+        TrilinosWrappers::MPI::Vector force(locally_owned_dofs,
+                                            mpi_communicator);
+        assemble_internal_force(previous.u, true, force);
+      }
+    const double w = stepper.new_force_weight();
+    system_matrix *= w;
+    if (has_damping)
+      system_matrix.add(w * stepper.velocity_coefficient(dt), damping_matrix);
+    system_matrix.add(stepper.acceleration_coefficient(dt), mass);
+    system_matrix_is_state_stiffness = false;
+    prepare_linear_solver(system_matrix);
   }
 
 
@@ -550,8 +681,16 @@ namespace SoftRobot
           }
       }
     ++step_number;
-    // The last Newton iteration assembled the damping matrix of the
-    // converged state: it is the next step's.
+    // The damping matrix of the converged state is the next step's. Newton's
+    // method proper assembled it in its last iteration; the modified one
+    // assembled residuals only, and the stiffness and damping of the new
+    // state are assembled here, once per step (the stiffness is the next
+    // step's matrix).
+    if (parameters.tangent_update == "every step")
+      {
+        assemble_internal_force(current.u, true, current.internal_force);
+        system_matrix_is_state_stiffness = true;
+      }
     if (has_damping)
       damping_matrix.copy_from(next_damping_matrix);
 
@@ -579,6 +718,7 @@ namespace SoftRobot
   {
     TrilinosWrappers::MPI::Vector force(locally_owned_dofs, mpi_communicator);
     assemble_internal_force(current.u, true, force);
+    system_matrix_is_state_stiffness = true;
     return system_matrix;
   }
 
@@ -594,7 +734,13 @@ namespace SoftRobot
   SoftRobotDynamics<dim>::newton_solve(TrilinosWrappers::MPI::Vector &,       \
                                        const ResidualEvaluator &,             \
                                        const double,                          \
-                                       unsigned int &);                       \
+                                       unsigned int &,                        \
+                                       const bool);                           \
+  template void SoftRobotDynamics<dim>::prepare_linear_solver(               \
+    TrilinosWrappers::SparseMatrix &);                                        \
+  template unsigned int SoftRobotDynamics<dim>::solve_prepared_system(        \
+    const TrilinosWrappers::MPI::Vector &, TrilinosWrappers::MPI::Vector &);  \
+  template void SoftRobotDynamics<dim>::prepare_step_tangent(const double);   \
   template unsigned int SoftRobotDynamics<dim>::solve_linear_system(          \
     TrilinosWrappers::SparseMatrix &,                                         \
     const TrilinosWrappers::MPI::Vector &,                                    \
