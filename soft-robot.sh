@@ -9,6 +9,9 @@
 #   ./soft-robot.sh validate   build in Release, run all thirty bellows scenes
 #                              (SOFT_ROBOT_JOBS at a time, default 2) and
 #                              write doc/validation.md
+#   ./soft-robot.sh benchmark  build in Release, run the speed benchmark (and
+#                              CalculiX as the peer) one case at a time and
+#                              write doc/performance.md
 #
 # Build directories: build-release/ and build-debug/ beside this script.
 set -euo pipefail
@@ -53,6 +56,12 @@ case "${1:-}" in
     cd build-debug
     ctest --output-on-failure -j "$(nproc)"
     ;;
+  benchmark)
+    packages+=(python3-numpy calculix-ccx openmpi-bin)
+    install_missing_packages
+    build Release build-release -DSOFT_ROBOT_BUILD_TESTS=OFF
+    /usr/bin/python3 doc/performance/run_benchmarks.py build-release "${@:2}"
+    ;;
   validate)
     packages+=(python3-matplotlib python3-numpy)
     install_missing_packages
@@ -82,7 +91,7 @@ case "${1:-}" in
     echo "Wrote doc/validation.md"
     ;;
   *)
-    echo "Usage: $0 demo|test|validate" >&2
+    echo "Usage: $0 demo|test|validate|benchmark" >&2
     exit 2
     ;;
 esac

@@ -1,0 +1,289 @@
+#!/usr/bin/env python3
+"""The speed benchmark: runs named cases with the Release build of
+soft-robot, one at a time, and writes doc/performance.md.
+
+    ./soft-robot.sh benchmark               (builds, then runs this script)
+    python3 doc/performance/run_benchmarks.py build-release [--cases a,b]
+                                              [--skip-calculix]
+
+Every case is a scene of parameters/bellows/ with command-line overrides
+(`--set`). The program writes `run_statistics.json` into its output
+directory (cells, dofs, steps, Newton and linear iterations, the wall time
+of each timed section, peak memory); this script adds the tip frequency
+from `tip_spectrum.csv` and the wall time it measured itself, and prints
+one table. Cases marked "window" run only the first part of the motion
+(their cost per step is what they measure; a tip frequency needs the whole
+record). The peer, CalculiX, runs the headline case through
+calculix_peer.py in the same session.
+
+Nothing here is a test: the numbers depend on the machine, and they are
+reported, not checked.
+"""
+
+import argparse
+import csv
+import json
+import math
+import os
+import platform
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+REPOSITORY = Path(__file__).resolve().parents[2]
+
+HEADLINE = "parameters/bellows/vertical_ds20_3d.prm"
+QUIET = ["Output/Progress interval=0"]
+
+# name, scene, overrides, MPI processes, description
+CASES = [
+    ("headline", HEADLINE, [], 1,
+     "exp. 1 DS20 quarter, coarse P1, 5.25 s (the reference's 1,800 s case)"),
+    ("headline_mpi2", HEADLINE, [], 2,
+     "the same on 2 MPI processes"),
+    ("headline_full_newton", HEADLINE,
+     ["Nonlinear solver/Tangent update=every iteration"], 1,
+     "the same with a new tangent in every Newton iteration"),
+    ("headline_no_output", HEADLINE,
+     ["Output/Write VTU=false"], 1,
+     "the same without VTU output"),
+    ("quarter_medium_window", HEADLINE,
+     ["Geometry/Mesh file=../../meshes/bellows_quarter_medium.msh",
+      "Time integration/End time=0.5", "Output/Spectral analysis=false"], 1,
+     "medium quarter mesh, first 0.5 s"),
+    ("quarter_fine_window", HEADLINE,
+     ["Geometry/Mesh file=../../meshes/bellows_quarter_fine.msh",
+      "Time integration/End time=0.5", "Output/Spectral analysis=false"], 1,
+     "fine quarter mesh, first 0.5 s"),
+    ("quarter_refined_window", HEADLINE,
+     ["Geometry/Global refinements=1",
+      "Time integration/End time=0.1", "Output/Spectral analysis=false"], 1,
+     "coarse quarter mesh refined once (8x cells), first 0.1 s"),
+    ("quarter_p2_window", HEADLINE,
+     ["Finite element/Polynomial degree=2",
+      "Time integration/End time=0.2", "Output/Spectral analysis=false"], 1,
+     "coarse quarter mesh, quadratic elements, first 0.2 s"),
+    ("planar_3d", "parameters/bellows/planar_ds20_3d.prm", [], 1,
+     "exp. 2 DS20 half model, 6 s (reference: 5,000 s)"),
+    ("spherical_3d", "parameters/bellows/spherical_ds20_3d.prm", [], 1,
+     "exp. 3 DS20 full model, 6 s (reference: 2,200 s)"),
+    ("column_1d", "parameters/bellows/column_ds20_1d.prm", [], 1,
+     "reduced 1D column, 5.25 s"),
+    ("planar_2d", "parameters/bellows/planar_ds20_2d.prm", [], 1,
+     "reduced 2D strip, 6 s"),
+]
+
+REFERENCE_SECONDS = {"headline": 1800., "planar_3d": 5000., "spherical_3d": 2200.}
+
+
+def tip_frequency(output):
+    """The dominant peak of the direction with the largest magnitude."""
+    path = output / "tip_spectrum.csv"
+    if not path.exists():
+        return None
+    best = None
+    with open(path) as file:
+        for row in csv.DictReader(file):
+            if row["peak"] != "dominant" or not row["f_peak_Hz"]:
+                continue
+            magnitude = float(row["magnitude"])
+            if best is None or magnitude > best[0]:
+                best = (magnitude, float(row["f_peak_Hz"]), row["direction"])
+    return None if best is None else (best[1], best[2])
+
+
+def run_case(build, output_root, case):
+    name, scene, overrides, processes, description = case
+    output = output_root / name
+    command = [str(build / "soft-robot"), scene,
+               "--set", f"Problem/Output directory={output}"]
+    for entry in QUIET + overrides:
+        command += ["--set", entry]
+    if processes > 1:
+        command = ["mpirun", "-np", str(processes)] + command
+    environment = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1",
+                       OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1", OMP_NUM_THREADS="1")
+    print(f"[{name}] {description}", flush=True)
+    start = time.perf_counter()
+    result = subprocess.run(command, cwd=REPOSITORY, env=environment,
+                            capture_output=True, text=True)
+    seconds = time.perf_counter() - start
+    output.mkdir(parents=True, exist_ok=True)
+    (output / "run.log").write_text(result.stdout + result.stderr)
+    if result.returncode != 0:
+        sys.exit(f"case {name} failed (exit {result.returncode}); "
+                 f"see {output / 'run.log'}")
+    statistics = json.loads((output / "run_statistics.json").read_text())
+    statistics["measured_seconds"] = seconds
+    statistics["tip"] = tip_frequency(output)
+    print(f"    {statistics['wall_seconds']:.2f} s, "
+          f"{statistics['dofs']} dofs, f = {statistics['tip']}", flush=True)
+    return statistics
+
+
+def run_calculix(output_root):
+    workdir = output_root / "calculix_peer"
+    command = [sys.executable, str(REPOSITORY / "doc/performance/calculix_peer.py"),
+               "--workdir", str(workdir)]
+    print("[calculix] the headline case with CalculiX (1 thread)", flush=True)
+    result = subprocess.run(command, cwd=REPOSITORY, capture_output=True, text=True)
+    if result.returncode != 0:
+        print(result.stdout[-2000:] + result.stderr[-2000:])
+        return None
+    return json.loads((workdir / "calculix_peer.json").read_text())
+
+
+def machine_description():
+    model = "unknown CPU"
+    try:
+        for line in Path("/proc/cpuinfo").read_text().splitlines():
+            if line.startswith("model name"):
+                model = line.split(":", 1)[1].strip()
+                break
+    except OSError:
+        pass
+    return f"{os.cpu_count()} cores ({model}), {platform.system()} {platform.release()}"
+
+
+def commit():
+    try:
+        return subprocess.run(["git", "rev-parse", "--short", "HEAD"], cwd=REPOSITORY,
+                              capture_output=True, text=True).stdout.strip()
+    except OSError:
+        return "unknown"
+
+
+def section(statistics, *names):
+    return sum(statistics["sections"].get(name, 0.) for name in names)
+
+
+def write_report(path, results, calculix, command):
+    lines = []
+    lines.append("<!-- Written by doc/performance/run_benchmarks.py; "
+                 "the discussion is in doc/performance_discussion.md. -->")
+    lines.append("# Performance\n")
+    lines.append(f"Command: `{command}`  ")
+    lines.append(f"Commit: `{commit()}`, Release build  ")
+    lines.append(f"Machine: {machine_description()}  ")
+    lines.append(f"Date: {time.strftime('%Y-%m-%d')}\n")
+    lines.append("All times are wall-clock seconds of the whole run (mesh, "
+                 "set-up, initial static equilibrium, time loop, output, "
+                 "spectral analysis), as the program measures them; cases run "
+                 "one after the other on an otherwise idle machine. Newton/step "
+                 "counts all iterations, those with an old tangent included. "
+                 "Assembly is the residual and matrix assemblies; solver set-up "
+                 "is the sparse factorizations (or multigrid set-ups); solve is "
+                 "the back substitutions (or CG iterations).\n")
+    lines.append("| case | cells | dofs | steps | wall s | ms/step | Newton/step "
+                 "| factorizations | assembly s | solver set-up s | solve s "
+                 "| output s | peak MB | tip f (Hz) |")
+    lines.append("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|")
+    for name, description, s in results:
+        tip = "–" if not s["tip"] else f"{s['tip'][0]:.4f} ({s['tip'][1]})"
+        lines.append(
+            f"| {name} | {s['cells']} | {s['dofs']} | {s['steps']} "
+            f"| {s['wall_seconds']:.2f} | {1000 * s['wall_seconds'] / max(s['steps'], 1):.1f} "
+            f"| {s['newton_iterations'] / max(s['steps'], 1):.2f} "
+            f"| {s['factorizations_or_amg_setups']} "
+            f"| {section(s, 'Assemble residual', 'Assemble system', 'Assemble tractions'):.2f} "
+            f"| {section(s, 'Factorization', 'Preconditioner setup'):.2f} "
+            f"| {section(s, 'Linear solve'):.2f} | {section(s, 'Output'):.2f} "
+            f"| {s['peak_memory_mb']:.0f} | {tip} |")
+    lines.append("")
+    for name, description, s in results:
+        lines.append(f"- **{name}**: {description}; {s['mpi_processes']} process(es), "
+                     f"linear solver {s['linear_solver']}, tangent update "
+                     f"'{s['tangent_update']}'.")
+    lines.append("")
+
+    by_name = {name: s for name, _, s in results}
+    lines.append("## Against the reference and the peer\n")
+    lines.append("| case | this program s | reference s | speed-up |")
+    lines.append("|---|---:|---:|---:|")
+    for name, reference in REFERENCE_SECONDS.items():
+        if name in by_name:
+            ours = by_name[name]["wall_seconds"]
+            lines.append(f"| {name} | {ours:.2f} | {reference:.0f} (4 threads) "
+                         f"| {reference / ours:.0f}x |")
+    lines.append("")
+    if calculix and "headline" in by_name:
+        ours = by_name["headline"]
+        lines.append(
+            f"CalculiX {calculix['ccx_version']} on the headline case (same mesh, "
+            f"material, damping coefficient, time step, HHT alpha and duration; "
+            f"{calculix['threads']} thread): **{calculix['wall_seconds']:.2f} s**, "
+            f"tip frequency {calculix['f_peak_Hz']:.4f} Hz, peak memory "
+            f"{calculix['peak_memory_MiB']:.0f} MiB, {calculix['dynamic_iterations']} "
+            f"Newton iterations in {calculix['dynamic_increments']} increments. "
+            f"This program: {ours['wall_seconds']:.2f} s, tip frequency "
+            f"{ours['tip'][0]:.4f} Hz, {ours['newton_iterations']} Newton iterations "
+            f"(ratio CalculiX / this program: "
+            f"{calculix['wall_seconds'] / ours['wall_seconds']:.2f}).\n")
+        lines.append("Differences of the peer's model (from calculix_peer.py):\n")
+        for caveat in calculix["caveats"]:
+            lines.append(f"- {caveat}")
+        lines.append("")
+
+    series = [(by_name[n]["dofs"], by_name[n]) for n in
+              ("headline", "quarter_medium_window", "quarter_fine_window",
+               "quarter_refined_window") if n in by_name]
+    if len(series) >= 2:
+        lines.append("## Cost per Newton iteration over the refinement series\n")
+        lines.append("The time of the assemblies, factorizations and solves "
+                     "divided by the number of Newton iterations, and the "
+                     "exponent p of t ~ N^p between neighbouring meshes.\n")
+        lines.append("| dofs | ms per Newton iteration | exponent |")
+        lines.append("|---:|---:|---:|")
+        previous = None
+        for dofs, s in series:
+            work = section(s, "Assemble residual", "Assemble system", "Factorization",
+                           "Preconditioner setup", "Linear solve")
+            per_iteration = 1000 * work / max(s["newton_iterations"], 1)
+            exponent = "–"
+            if previous:
+                exponent = f"{math.log(per_iteration / previous[1]) / math.log(dofs / previous[0]):.2f}"
+            lines.append(f"| {dofs} | {per_iteration:.2f} | {exponent} |")
+            previous = (dofs, per_iteration)
+        lines.append("")
+
+    discussion = REPOSITORY / "doc" / "performance_discussion.md"
+    if discussion.exists():
+        lines.append(discussion.read_text())
+    path.write_text("\n".join(lines) + "\n")
+    print(f"wrote {path}")
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__,
+                                     formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("build", help="the Release build directory")
+    parser.add_argument("--cases", help="comma-separated case names (default: all)")
+    parser.add_argument("--output", default="output/benchmarks")
+    parser.add_argument("--report", default="doc/performance.md")
+    parser.add_argument("--skip-calculix", action="store_true")
+    arguments = parser.parse_args()
+
+    build = Path(arguments.build).resolve()
+    if not (build / "soft-robot").exists():
+        sys.exit(f"{build / 'soft-robot'} does not exist: build in Release first")
+    selected = CASES
+    if arguments.cases:
+        names = arguments.cases.split(",")
+        unknown = set(names) - {case[0] for case in CASES}
+        if unknown:
+            sys.exit(f"unknown case(s): {', '.join(sorted(unknown))}; "
+                     f"known: {', '.join(case[0] for case in CASES)}")
+        selected = [case for case in CASES if case[0] in names]
+    output_root = (REPOSITORY / arguments.output).resolve()
+    output_root.mkdir(parents=True, exist_ok=True)
+
+    results = [(case[0], case[4], run_case(build, output_root, case)) for case in selected]
+    calculix = None if arguments.skip_calculix else run_calculix(output_root)
+    command = "./soft-robot.sh benchmark" + (
+        f" (cases: {arguments.cases})" if arguments.cases else "")
+    write_report(REPOSITORY / arguments.report, results, calculix, command)
+
+
+if __name__ == "__main__":
+    main()
