@@ -93,9 +93,13 @@ def tip_frequency(output):
     return None if best is None else (best[1], best[2])
 
 
-def run_case(build, output_root, case):
+def run_case(build, output_root, case, reuse=False):
     name, scene, overrides, processes, description = case
     output = output_root / name
+    if reuse:
+        statistics = json.loads((output / "run_statistics.json").read_text())
+        statistics["tip"] = tip_frequency(output)
+        return statistics
     command = [str(build / "soft-robot"), scene,
                "--set", f"Problem/Output directory={output}"]
     for entry in QUIET + overrides:
@@ -262,6 +266,8 @@ def main():
     parser.add_argument("--output", default="output/benchmarks")
     parser.add_argument("--report", default="doc/performance.md")
     parser.add_argument("--skip-calculix", action="store_true")
+    parser.add_argument("--report-only", action="store_true",
+                        help="write the report from the output of the last run")
     arguments = parser.parse_args()
 
     build = Path(arguments.build).resolve()
@@ -278,8 +284,13 @@ def main():
     output_root = (REPOSITORY / arguments.output).resolve()
     output_root.mkdir(parents=True, exist_ok=True)
 
-    results = [(case[0], case[4], run_case(build, output_root, case)) for case in selected]
-    calculix = None if arguments.skip_calculix else run_calculix(output_root)
+    results = [(case[0], case[4], run_case(build, output_root, case, arguments.report_only))
+               for case in selected]
+    if arguments.report_only:
+        peer = output_root / "calculix_peer" / "calculix_peer.json"
+        calculix = json.loads(peer.read_text()) if peer.exists() else None
+    else:
+        calculix = None if arguments.skip_calculix else run_calculix(output_root)
     command = "./soft-robot.sh benchmark" + (
         f" (cases: {arguments.cases})" if arguments.cases else "")
     write_report(REPOSITORY / arguments.report, results, calculix, command)
