@@ -561,7 +561,10 @@ namespace
 int
 main(int argc, char *argv[])
 {
-  Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
+  // Threads for the assembly: the cores divided among the MPI processes.
+  Utilities::MPI::MPI_InitFinalize mpi(argc,
+                                       argv,
+                                       numbers::invalid_unsigned_int);
   const std::vector<std::string>   arguments(argv + 1, argv + argc);
   try
     {

@@ -41,7 +41,10 @@ int
 main(int argc, char *argv[])
 {
   using namespace SoftRobot;
-  dealii::Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
+  // Threads for the assembly: deal.II's default, the cores of the machine
+  // divided among its MPI processes (DEAL_II_NUM_THREADS limits them).
+  dealii::Utilities::MPI::MPI_InitFinalize mpi(
+    argc, argv, dealii::numbers::invalid_unsigned_int);
   const bool                               root =
     dealii::Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0;
 

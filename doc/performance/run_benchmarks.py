@@ -40,6 +40,8 @@ QUIET = ["Output/Progress interval=0"]
 CASES = [
     ("headline", HEADLINE, [], 1,
      "exp. 1 DS20 quarter, coarse P1, 5.25 s (the reference's 1,800 s case)"),
+    ("headline_1_thread", HEADLINE, [], 1,
+     "the same with one thread (DEAL_II_NUM_THREADS=1)"),
     ("headline_mpi2", HEADLINE, [], 2,
      "the same on 2 MPI processes"),
     ("headline_full_newton", HEADLINE,
@@ -108,6 +110,8 @@ def run_case(build, output_root, case, reuse=False):
         command = ["mpirun", "-np", str(processes)] + command
     environment = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1",
                        OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1", OMP_NUM_THREADS="1")
+    if name.endswith("_1_thread"):
+        environment["DEAL_II_NUM_THREADS"] = "1"
     print(f"[{name}] {description}", flush=True)
     start = time.perf_counter()
     result = subprocess.run(command, cwd=REPOSITORY, env=environment,
@@ -196,7 +200,8 @@ def write_report(path, results, calculix, command):
             f"| {s['peak_memory_mb']:.0f} | {tip} |")
     lines.append("")
     for name, description, s in results:
-        lines.append(f"- **{name}**: {description}; {s['mpi_processes']} process(es), "
+        lines.append(f"- **{name}**: {description}; {s['mpi_processes']} process(es) "
+                     f"with {s.get('threads_per_process', 1)} thread(s) each, "
                      f"linear solver {s['linear_solver']}, tangent update "
                      f"'{s['tangent_update']}'.")
     lines.append("")

@@ -57,7 +57,6 @@
 #include <deal.II/fe/fe_system.h>
 #include <deal.II/fe/mapping.h>
 #include <deal.II/lac/affine_constraints.h>
-#include <deal.II/lac/solver_control.h>
 #include <deal.II/lac/trilinos_sparse_matrix.h>
 #include <deal.II/lac/trilinos_vector.h>
 #include <fstream>
@@ -71,9 +70,10 @@
 // needed only where they are used.
 namespace dealii::TrilinosWrappers
 {
-  class SolverDirect;
   class PreconditionAMG;
 } // namespace dealii::TrilinosWrappers
+class Amesos_BaseSolver;
+class Epetra_LinearProblem;
 
 namespace SoftRobot
 {
@@ -251,9 +251,12 @@ namespace SoftRobot
                             const double                   load_factor,
                             TrilinosWrappers::MPI::Vector &force) const;
     AssemblyResult
+    // With the matrix, also the damping matrix of the state unless
+    // `with_damping_matrix` is false.
     assemble_internal_force(const TrilinosWrappers::MPI::Vector &u,
                             const bool                           with_matrix,
-                            TrilinosWrappers::MPI::Vector &internal_force);
+                            TrilinosWrappers::MPI::Vector &internal_force,
+                            const bool with_damping_matrix = true);
     void
     solve_nonlinear_timestep(const double dt);
     unsigned int
@@ -389,12 +392,14 @@ namespace SoftRobot
     // (after the assembly at the end of a step), from which the next
     // step's modified-Newton matrix is formed.
     bool system_matrix_is_state_stiffness = false;
-    // The prepared linear solver: the factorization of the direct solver
-    // or the multigrid hierarchy.
-    SolverControl                                     direct_solver_control;
-    std::unique_ptr<TrilinosWrappers::SolverDirect>   direct_solver;
+    // The prepared linear solver: the sparse factorization (Amesos KLU,
+    // whose symbolic analysis of the sparsity pattern is done once per
+    // matrix object) or the multigrid hierarchy.
+    std::unique_ptr<Epetra_LinearProblem>              direct_problem;
+    std::unique_ptr<Amesos_BaseSolver>                 direct_factorization;
+    const void                                        *analysed_matrix = nullptr;
     std::unique_ptr<TrilinosWrappers::PreconditionAMG> amg_preconditioner;
-    const TrilinosWrappers::SparseMatrix             *prepared_matrix = nullptr;
+    const TrilinosWrappers::SparseMatrix              *prepared_matrix = nullptr;
     State                          current;
     State                          previous;
 

@@ -555,7 +555,7 @@ namespace SoftRobot
         "step': the tangent of the last converged state, built and "
         "factorized once per step, for all iterations of the step (modified "
         "Newton); it is rebuilt at the current iterate when an iteration "
-        "reduces the residual by less than a factor of four. Both converge "
+        "reduces the residual by less than a factor of two. Both converge "
         "to the same tolerance; 'every step' is several times cheaper for "
         "smooth motions. The static equilibrium always uses 'every "
         "iteration'.");

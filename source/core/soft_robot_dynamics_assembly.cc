@@ -6,7 +6,11 @@
 // forces.
 
 #include <core/soft_robot_dynamics.h>
+#include <deal.II/base/multithread_info.h>
+#include <deal.II/base/work_stream.h>
 #include <deal.II/fe/fe_values.h>
+#include <limits>
+#include <numeric>
 
 namespace SoftRobot
 {
@@ -32,156 +36,229 @@ namespace SoftRobot
   // @f]
   // the first term of $K_{ij}$ being the material part, which times
   // $\zeta$ is the damping matrix of this state (see the class
-  // documentation); it is assembled into `next_damping_matrix` alongside.
-  // The gradients $\nabla_0\varphi_i$ and weights come from the cache of
-  // setup_cell_geometry(). Without the matrix only first derivatives of the
-  // energy are computed (NeoHookeanEnergy::evaluate_stress()), which costs
-  // a sixth of the full evaluation.
+  // documentation); with `with_damping` it is assembled into
+  // `next_damping_matrix` alongside. The gradients $\nabla_0\varphi_i$ and
+  // weights come from the cache of setup_cell_geometry(). Without the
+  // matrix only first derivatives of the energy are computed
+  // (NeoHookeanEnergy::evaluate_stress()), which costs a sixth of the full
+  // evaluation.
+  //
+  // The cells are processed by deal.II's WorkStream: the cell integrals
+  // (`local_assemble`, which holds nearly all of the arithmetic) run on
+  // all threads, the additions into the global matrices and vectors
+  // (`copy_local_to_global`) one after the other, in the order of the
+  // cells, so that the result does not depend on the number of threads.
+  // The number of threads is deal.II's default -- the cores divided among
+  // the MPI processes of the machine -- and can be limited with the
+  // environment variable DEAL_II_NUM_THREADS.
   //
   // A quadrature point with $\det\mathbf F\le 0$ has no physical meaning:
   // it is reported (on all processes), and the caller rejects the state.
+  namespace
+  {
+    // The work space of one thread: the material response and the strain
+    // variations of a cell's shape functions.
+    template <int dim>
+    struct AssemblyScratch
+    {
+      MaterialResponse<dim>                response;
+      std::vector<SymmetricTensor<2, dim>> delta_E;
+    };
+
+    // What one cell contributes: its matrices, force, dof indices, and its
+    // part of the results of the assembly.
+    struct CellContribution
+    {
+      FullMatrix<double>                   matrix;
+      FullMatrix<double>                   damping;
+      Vector<double>                       force;
+      std::vector<types::global_dof_index> dof_indices;
+      double                               strain_energy = 0.;
+      double min_jacobian  = std::numeric_limits<double>::max();
+      bool   inverted      = false;
+      bool   with_matrix   = false;
+      bool   with_damping  = false;
+    };
+  } // namespace
+
+
+
   template <int dim>
   typename SoftRobotDynamics<dim>::AssemblyResult
   SoftRobotDynamics<dim>::assemble_internal_force(
     const TrilinosWrappers::MPI::Vector &u,
     const bool                           with_matrix,
-    TrilinosWrappers::MPI::Vector       &internal_force)
+    TrilinosWrappers::MPI::Vector       &internal_force,
+    const bool                           with_damping_matrix)
   {
     TimerOutput::Scope timer_section(computing_timer,
                                      with_matrix ? "Assemble system" :
                                                    "Assemble residual");
-
-    TrilinosWrappers::MPI::Vector u_ghosted(locally_owned_dofs,
-                                            locally_relevant_dofs,
-                                            mpi_communicator);
-    u_ghosted = u;
-
-    const bool with_damping = with_matrix && has_damping;
-    if (with_matrix)
-      system_matrix = 0.;
-    if (with_damping)
-      next_damping_matrix = 0.;
-    internal_force = 0.;
 
     const CellGeometry &geometry      = cell_geometry;
     const unsigned int  dofs_per_cell = geometry.dofs_per_cell;
     const unsigned int  n_q_points    = geometry.n_q_points;
     const std::vector<unsigned int> &component = geometry.components;
 
-    FullMatrix<double> cell_matrix(dofs_per_cell, dofs_per_cell);
-    FullMatrix<double> cell_damping(dofs_per_cell, dofs_per_cell);
-    Vector<double>     cell_force(dofs_per_cell);
-    std::vector<double>                  cell_u(dofs_per_cell);
-    std::vector<types::global_dof_index> dof_indices(dofs_per_cell);
-    std::vector<SymmetricTensor<2, dim>> delta_E(dofs_per_cell);
-    MaterialResponse<dim>                response;
+    // The displacements of the cells' dofs, read once from the ghosted
+    // vector, so that the threads only read a plain array.
+    std::vector<double> cell_values(geometry.dof_indices.size());
+    {
+      TrilinosWrappers::MPI::Vector u_ghosted(locally_owned_dofs,
+                                              locally_relevant_dofs,
+                                              mpi_communicator);
+      u_ghosted = u;
+      for (std::size_t k = 0; k < cell_values.size(); ++k)
+        cell_values[k] = u_ghosted(geometry.dof_indices[k]);
+    }
 
-    AssemblyResult result;
-    for (unsigned int cell = 0; cell < geometry.n_cells; ++cell)
-      {
-        const auto first_dof =
-          geometry.dof_indices.begin() + cell * dofs_per_cell;
-        std::copy(first_dof, first_dof + dofs_per_cell, dof_indices.begin());
-        for (unsigned int i = 0; i < dofs_per_cell; ++i)
-          cell_u[i] = u_ghosted(dof_indices[i]);
-        const NeoHookeanEnergy<dim> &material = *geometry.material[cell];
-        const double                 zeta     = geometry.damping_zeta[cell];
+    const bool with_damping = with_matrix && has_damping && with_damping_matrix;
+    if (with_matrix)
+      system_matrix = 0.;
+    if (with_damping)
+      next_damping_matrix = 0.;
+    internal_force = 0.;
 
-        if (with_matrix)
-          {
-            cell_matrix  = 0.;
-            cell_damping = 0.;
-          }
-        cell_force = 0.;
-        for (unsigned int q = 0; q < n_q_points; ++q)
-          {
-            const unsigned int    point = cell * n_q_points + q;
-            const Tensor<1, dim> *grad_phi =
-              &geometry.shape_gradients[point * dofs_per_cell];
-            const double JxW = geometry.JxW[point];
+    // The integrals over one cell.
+    const auto local_assemble = [&](const unsigned int   *cell_pointer,
+                                    AssemblyScratch<dim> &scratch,
+                                    CellContribution     &local) {
+      const unsigned int     cell     = *cell_pointer;
+      MaterialResponse<dim> &response = scratch.response;
+      scratch.delta_E.resize(dofs_per_cell);
+      std::vector<SymmetricTensor<2, dim>> &delta_E = scratch.delta_E;
+      if (local.force.size() != dofs_per_cell)
+        {
+          local.matrix.reinit(dofs_per_cell, dofs_per_cell);
+          local.damping.reinit(dofs_per_cell, dofs_per_cell);
+          local.force.reinit(dofs_per_cell);
+          local.dof_indices.resize(dofs_per_cell);
+        }
+      local.with_matrix   = with_matrix;
+      local.with_damping  = with_damping;
+      local.strain_energy = 0.;
+      local.min_jacobian  = std::numeric_limits<double>::max();
+      local.inverted      = false;
+      std::copy_n(geometry.dof_indices.begin() + cell * dofs_per_cell,
+                  dofs_per_cell,
+                  local.dof_indices.begin());
+      const double *cell_u = &cell_values[cell * dofs_per_cell];
+      const NeoHookeanEnergy<dim> &material = *geometry.material[cell];
+      const double                 zeta     = geometry.damping_zeta[cell];
 
-            Tensor<2, dim> H;
-            for (unsigned int i = 0; i < dofs_per_cell; ++i)
-              H[component[i]] += cell_u[i] * grad_phi[i];
-            Tensor<2, dim> F = H;
-            for (unsigned int d = 0; d < dim; ++d)
-              F[d][d] += 1.;
-            const double J      = determinant(F);
-            result.min_jacobian = std::min(result.min_jacobian, J);
-            if (!(J > 0.))
-              {
-                result.inverted_point_found = true;
-                continue;
-              }
-            if (with_matrix)
-              material.evaluate(H, response);
-            else
-              material.evaluate_stress(H, response);
-            result.strain_energy += response.energy * JxW;
+      if (with_matrix)
+        {
+          local.matrix  = 0.;
+          local.damping = 0.;
+        }
+      local.force = 0.;
+      for (unsigned int q = 0; q < n_q_points; ++q)
+        {
+          const unsigned int    point = cell * n_q_points + q;
+          const Tensor<1, dim> *grad_phi =
+            &geometry.shape_gradients[point * dofs_per_cell];
+          const double JxW = geometry.JxW[point];
 
-            const SymmetricTensor<2, dim> &S = response.second_piola;
-            for (unsigned int i = 0; i < dofs_per_cell; ++i)
-              {
-                const Tensor<1, dim> f_c = F[component[i]];
-                cell_force(i) += (f_c * (S * grad_phi[i])) * JxW;
-                if (with_matrix)
-                  delta_E[i] = symmetrize(outer_product(f_c, grad_phi[i]));
-              }
-            if (!with_matrix)
-              continue;
-
-            // The damping uses the positive semi-definite part of the
-            // material tangent (see positive_semidefinite_part()).
-            const bool              damped = with_damping && zeta > 0.;
-            SymmetricTensor<4, dim> damping_tangent;
-            if (damped)
-              damping_tangent =
-                positive_semidefinite_part(response.material_tangent);
-            for (unsigned int i = 0; i < dofs_per_cell; ++i)
-              {
-                const SymmetricTensor<2, dim> C_dE_i =
-                  response.material_tangent * delta_E[i];
-                const Tensor<1, dim> S_grad_phi_i = S * grad_phi[i];
-                for (unsigned int j = 0; j <= i; ++j)
-                  {
-                    double value = C_dE_i * delta_E[j];
-                    if (component[i] == component[j])
-                      value += S_grad_phi_i * grad_phi[j];
-                    cell_matrix(i, j) += value * JxW;
-                  }
-                if (damped)
-                  {
-                    const SymmetricTensor<2, dim> D_dE_i =
-                      damping_tangent * delta_E[i];
-                    for (unsigned int j = 0; j <= i; ++j)
-                      cell_damping(i, j) +=
-                        zeta * (D_dE_i * delta_E[j]) * JxW;
-                  }
-              }
-          }
-        if (with_matrix)
+          Tensor<2, dim> H;
           for (unsigned int i = 0; i < dofs_per_cell; ++i)
-            for (unsigned int j = i + 1; j < dofs_per_cell; ++j)
-              {
-                cell_matrix(i, j)  = cell_matrix(j, i);
-                cell_damping(i, j) = cell_damping(j, i);
-              }
+            H[component[i]] += cell_u[i] * grad_phi[i];
+          Tensor<2, dim> F = H;
+          for (unsigned int d = 0; d < dim; ++d)
+            F[d][d] += 1.;
+          const double J     = determinant(F);
+          local.min_jacobian = std::min(local.min_jacobian, J);
+          if (!(J > 0.))
+            {
+              local.inverted = true;
+              continue;
+            }
+          if (with_matrix)
+            material.evaluate(H, response);
+          else
+            material.evaluate_stress(H, response);
+          local.strain_energy += response.energy * JxW;
 
-        if (with_matrix)
-          constraints.distribute_local_to_global(cell_matrix,
-                                                 cell_force,
-                                                 dof_indices,
-                                                 system_matrix,
-                                                 internal_force);
-        else
-          constraints.distribute_local_to_global(cell_force,
-                                                 dof_indices,
-                                                 internal_force);
-        if (with_damping)
-          constraints.distribute_local_to_global(cell_damping,
-                                                 dof_indices,
-                                                 next_damping_matrix);
-      }
+          const SymmetricTensor<2, dim> &S = response.second_piola;
+          for (unsigned int i = 0; i < dofs_per_cell; ++i)
+            {
+              const Tensor<1, dim> f_c = F[component[i]];
+              local.force(i) += (f_c * (S * grad_phi[i])) * JxW;
+              if (with_matrix)
+                delta_E[i] = symmetrize(outer_product(f_c, grad_phi[i]));
+            }
+          if (!with_matrix)
+            continue;
+
+          // The damping uses the positive semi-definite part of the
+          // material tangent (see positive_semidefinite_part()).
+          const bool              damped = with_damping && zeta > 0.;
+          SymmetricTensor<4, dim> damping_tangent;
+          if (damped)
+            damping_tangent =
+              positive_semidefinite_part(response.material_tangent);
+          for (unsigned int i = 0; i < dofs_per_cell; ++i)
+            {
+              const SymmetricTensor<2, dim> C_dE_i =
+                response.material_tangent * delta_E[i];
+              const Tensor<1, dim> S_grad_phi_i = S * grad_phi[i];
+              for (unsigned int j = 0; j <= i; ++j)
+                {
+                  double value = C_dE_i * delta_E[j];
+                  if (component[i] == component[j])
+                    value += S_grad_phi_i * grad_phi[j];
+                  local.matrix(i, j) += value * JxW;
+                }
+              if (damped)
+                {
+                  const SymmetricTensor<2, dim> D_dE_i =
+                    damping_tangent * delta_E[i];
+                  for (unsigned int j = 0; j <= i; ++j)
+                    local.damping(i, j) += zeta * (D_dE_i * delta_E[j]) * JxW;
+                }
+            }
+        }
+      if (with_matrix)
+        for (unsigned int i = 0; i < dofs_per_cell; ++i)
+          for (unsigned int j = i + 1; j < dofs_per_cell; ++j)
+            {
+              local.matrix(i, j)  = local.matrix(j, i);
+              local.damping(i, j) = local.damping(j, i);
+            }
+    };
+
+    // The additions into the global objects, in the order of the cells.
+    AssemblyResult result;
+    const auto     copy_local_to_global = [&](const CellContribution &local) {
+      result.strain_energy += local.strain_energy;
+      result.min_jacobian = std::min(result.min_jacobian, local.min_jacobian);
+      result.inverted_point_found =
+        result.inverted_point_found || local.inverted;
+      if (local.with_matrix)
+        constraints.distribute_local_to_global(local.matrix,
+                                               local.force,
+                                               local.dof_indices,
+                                               system_matrix,
+                                               internal_force);
+      else
+        constraints.distribute_local_to_global(local.force,
+                                               local.dof_indices,
+                                               internal_force);
+      if (local.with_damping)
+        constraints.distribute_local_to_global(local.damping,
+                                               local.dof_indices,
+                                               next_damping_matrix);
+    };
+
+    std::vector<unsigned int> cells(geometry.n_cells);
+    std::iota(cells.begin(), cells.end(), 0U);
+    WorkStream::run(cells.data(),
+                    cells.data() + cells.size(),
+                    local_assemble,
+                    copy_local_to_global,
+                    AssemblyScratch<dim>(),
+                    CellContribution(),
+                    2 * MultithreadInfo::n_threads(),
+                    64);
 
     if (with_matrix)
       system_matrix.compress(VectorOperation::add);
@@ -275,7 +352,8 @@ namespace SoftRobot
   template typename SoftRobotDynamics<dim>::AssemblyResult SoftRobotDynamics< \
     dim>::assemble_internal_force(const TrilinosWrappers::MPI::Vector &,      \
                                   const bool,                                 \
-                                  TrilinosWrappers::MPI::Vector &);           \
+                                  TrilinosWrappers::MPI::Vector &,            \
+                                  const bool);                                \
   template void SoftRobotDynamics<dim>::assemble_external_force(              \
     const double, const double, TrilinosWrappers::MPI::Vector &) const;
 

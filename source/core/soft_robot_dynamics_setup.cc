@@ -6,6 +6,7 @@
 
 #include <core/soft_robot_dynamics.h>
 #include <deal.II/base/function_parser.h>
+#include <deal.II/base/multithread_info.h>
 #include <deal.II/base/quadrature_lib.h>
 #include <deal.II/base/utilities.h>
 #include <deal.II/dofs/dof_tools.h>
@@ -20,7 +21,8 @@
 #include <deal.II/lac/dynamic_sparsity_pattern.h>
 #include <deal.II/lac/sparsity_tools.h>
 #include <deal.II/lac/trilinos_precondition.h>
-#include <deal.II/lac/trilinos_solver.h>
+#include <Amesos_BaseSolver.h>
+#include <Epetra_LinearProblem.h>
 #include <deal.II/numerics/vector_tools.h>
 #include <filesystem>
 #include <iomanip>
@@ -723,6 +725,8 @@ namespace SoftRobot
          << "  \"degree\": " << parameters.degree << ",\n"
          << "  \"mpi_processes\": "
          << Utilities::MPI::n_mpi_processes(mpi_communicator) << ",\n"
+         << "  \"threads_per_process\": " << MultithreadInfo::n_threads()
+         << ",\n"
          << "  \"linear_solver\": \"" << parameters.LinearSolver::type
          << "\",\n"
          << "  \"tangent_update\": \"" << parameters.tangent_update << "\",\n"

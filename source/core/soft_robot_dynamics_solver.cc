@@ -4,6 +4,9 @@
 // initial state (including a static equilibrium) and the time step with
 // its automatic cut back.
 
+#include <Amesos.h>
+#include <Amesos_BaseSolver.h>
+#include <Epetra_LinearProblem.h>
 #include <Epetra_MultiVector.h>
 #include <Teuchos_ParameterList.hpp>
 #include <cmath>
@@ -44,8 +47,14 @@ namespace SoftRobot
   {
     stepper.update_kinematics(
       u_trial, previous.u, previous.v, previous.a, dt, current.v, current.a);
-    AssemblyResult assembly =
-      assemble_internal_force(u_trial, with_matrix, current.internal_force);
+    // Newton's method proper assembles the damping matrix of every iterate
+    // (the last one's is the next step's); the modified one assembles it
+    // at the end of the step only, so a matrix here is only a new tangent.
+    const bool every_iteration = (parameters.tangent_update != "every step");
+    AssemblyResult assembly    = assemble_internal_force(u_trial,
+                                                      with_matrix,
+                                                      current.internal_force,
+                                                      every_iteration);
     if (with_matrix)
       system_matrix_is_state_stiffness = false;
     if (has_damping)
@@ -111,7 +120,7 @@ namespace SoftRobot
   // still cheaper: an iteration with the old matrix costs a residual
   // assembly and a back substitution, a fifteenth of an iteration with a
   // new matrix. When an iteration reduces the residual by less than a
-  // factor of four, when `Max iterations` iterations have used the same old
+  // factor of two, when `Max iterations` iterations have used the same old
   // matrix, or when the line search fails with it, the tangent is rebuilt
   // at the current iterate. The modified variant is allowed twice the
   // iterations of the full one.
@@ -243,7 +252,7 @@ namespace SoftRobot
             ++iterations_with_tangent;
             tangent_is_current = false;
             rebuild_tangent =
-              (norm > 0.25 * old_norm) ||
+              (norm > 0.5 * old_norm) ||
               (iterations_with_tangent >=
                parameters.NonlinearSolver::max_iterations);
           }
@@ -287,12 +296,30 @@ namespace SoftRobot
     prepared_matrix = &matrix;
     if (parameters.LinearSolver::type == "Direct")
       {
+        // The fill-reducing ordering depends only on the sparsity pattern,
+        // which never changes: KLU's symbolic analysis is done once per
+        // matrix object, the numerical factorization for every new matrix.
+        // (deal.II's SolverDirect repeats both every time, and it hands out
+        // the Epetra matrix as const only, which the factorization reads.)
         TimerOutput::Scope timer_section(computing_timer, "Factorization");
-        direct_solver_control = SolverControl(1, 0);
-        direct_solver         = std::make_unique<TrilinosWrappers::SolverDirect>(
-          direct_solver_control,
-          TrilinosWrappers::SolverDirect::AdditionalData(false, "Amesos_Klu"));
-        direct_solver->initialize(matrix);
+        Epetra_CrsMatrix &epetra_matrix =
+          const_cast<Epetra_CrsMatrix &>(matrix.trilinos_matrix());
+        if (analysed_matrix != &epetra_matrix)
+          {
+            direct_problem = std::make_unique<Epetra_LinearProblem>();
+            direct_problem->SetOperator(&epetra_matrix);
+            Amesos factory;
+            direct_factorization.reset(
+              factory.Create("Amesos_Klu", *direct_problem));
+            AssertThrow(direct_factorization != nullptr,
+                        ExcMessage("Trilinos has no Amesos KLU solver."));
+            AssertThrow(direct_factorization->SymbolicFactorization() == 0,
+                        ExcMessage("KLU's symbolic factorization failed."));
+            analysed_matrix = &epetra_matrix;
+          }
+        if (direct_factorization->NumericFactorization() != 0)
+          throw StepFailure("the sparse factorization failed (singular "
+                            "matrix?)");
       }
     else
       {
@@ -338,7 +365,13 @@ namespace SoftRobot
     try
       {
         if (parameters.LinearSolver::type == "Direct")
-          direct_solver->solve(solution, rhs);
+          {
+            direct_problem->SetLHS(&solution.trilinos_vector());
+            direct_problem->SetRHS(const_cast<Epetra_MultiVector *>(
+              &rhs.trilinos_vector()));
+            AssertThrow(direct_factorization->Solve() == 0,
+                        ExcMessage("KLU's triangular solves failed."));
+          }
         else
           {
             SolverControl control(parameters.LinearSolver::max_iterations,
@@ -418,7 +451,7 @@ namespace SoftRobot
               const bool                           with_matrix,
               TrilinosWrappers::MPI::Vector       &r) {
             AssemblyResult assembly =
-              assemble_internal_force(u, with_matrix, internal);
+              assemble_internal_force(u, with_matrix, internal, false);
             system_matrix_is_state_stiffness = false;
             r = internal;
             r -= external;
@@ -587,7 +620,7 @@ namespace SoftRobot
       {
         TrilinosWrappers::MPI::Vector force(locally_owned_dofs,
                                             mpi_communicator);
-        assemble_internal_force(previous.u, true, force);
+        assemble_internal_force(previous.u, true, force, false);
       }
     const double w = stepper.new_force_weight();
     system_matrix *= w;
