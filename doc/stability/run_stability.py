@@ -70,6 +70,8 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
+plt.rcParams["axes.prop_cycle"] = plt.cycler(color=plt.get_cmap("tab20").colors)
+
 REPOSITORY = Path(__file__).resolve().parents[2]
 FIGURES = "doc/figures/stability"
 
@@ -125,10 +127,10 @@ CASES = [
      "equilibrium, 2 s", 0.02, False),
     ("ds20_tip_2mps_undamped", "extreme", VERTICAL_DS20,
      TIP_2MPS + SHORT + [f"{DS20}/Experiment-1 damping ratio=0"],
-     "ds20_tip_2mps with zeta = 0 (alpha = -0.25)", 0.02, False),
+     "ds20_tip_2mps with zeta = 0 (alpha = -0.25), 2 s", 0.02, False),
     ("ds20_tip_2mps_alpha0_undamped", "extreme", VERTICAL_DS20,
      TIP_2MPS + SHORT + UNDAMPED_DS20,
-     "ds20_tip_2mps with alpha = 0 and zeta = 0", 0.02, False),
+     "ds20_tip_2mps with alpha = 0 and zeta = 0, 2 s", 0.02, False),
     ("ds20_dt0.05", "extreme", VERTICAL_DS20, ["Time integration/Time step=0.05"],
      "dt = 0.05 s, 5.25 s", None, True),
     ("ds20_alpha0_undamped", "extreme", VERTICAL_DS20, UNDAMPED_DS20,
@@ -409,6 +411,7 @@ def measures(result, output_root):
         "E_ref": scale, "K_max": float(np.nanmax(K)),
         "B_maxabs": float(np.nanmax(np.abs(B))), "B_end": float(B[-1]),
         "B_maxgain": float(max(np.nanmax(B), 0.)),
+        "t_maxgain": float(t[int(np.nanargmax(B))]),
         "B_step1": float(B[1]) if len(B) > 1 else None,
         "dt_min": float(d["dt"][steps].min()) if steps.any() else math.nan,
     }
@@ -550,14 +553,16 @@ def fmt(value, digits=2):
         else f"{value:.{digits}f}"
 
 
-def status_text(r):
+def status_text(r, x):
     if r["status"] == "finished":
         return "yes"
     if r["status"] == "stopped":
         return f"clean stop (exit 2): {r['message']}"
     if r["status"] == "hang":
-        return f"**no: killed after the timeout (hang?)**; log: {' / '.join(r['log_tail'])}"
-    return f"**no: crashed (exit {r['exit_code']})**: {' / '.join(r.get('log_tail', []))}"
+        reached = f" at t = {x['end_time']:.4g} s" if x else ""
+        return (f"**no: killed at the {r['measured_seconds']:.0f} s timeout**, its "
+                f"trajectory ends{reached} (log tail below)")
+    return f"**no: crashed (exit {r['exit_code']})** (see its log tail below)"
 
 
 def write_report(path, results, m, session):
@@ -573,7 +578,8 @@ def write_report(path, results, m, session):
                  "the discussion is in doc/stability_discussion.md. -->")
     lines.append("# Stability on stiff and extreme cases\n")
     lines.append(f"Command: `{session['command']}`  ")
-    lines.append(f"Commit: `{commit()}`, Release build  ")
+    lines.append(f"Commit: `{session.get('commit') or commit()}` (HEAD when the study "
+                 "started), Release build  ")
     lines.append(f"Machine: {session['machine']}; load average at the start "
                  f"{session['load']}  ")
     lines.append(f"Date: {session['date']}; the whole study took "
@@ -596,11 +602,14 @@ def write_report(path, results, m, session):
         "normalised by E_ref = max over t of (K + S + |G − G(0)|), the largest energy "
         "stored in the body during the run. \"max |B|/E_ref\" is the drift, \"B end\" the "
         "signed value at the last step. Newton/step counts the iterations of the "
-        "converged attempt of each step (not those of attempts that were cut back).\n")
+        "converged attempt of each step (not those of attempts that were cut back); "
+        "\"tangents\" is the number of matrix assemblies and factorizations of the run "
+        "(`run_statistics.json`, written only by a run that finishes).\n")
 
     lines.append("| case | what was changed | finished | steps | cutbacks | Newton/step "
-                 "mean / max | max \\|B\\|/E_ref | B end / E_ref | NaN/inf | wall s |")
-    lines.append("|---|---|---|---:|---:|---:|---:|---:|---|---:|")
+                 "mean / max | tangents | max \\|B\\|/E_ref | B end / E_ref | NaN/inf "
+                 "| wall s |")
+    lines.append("|---|---|---|---:|---:|---:|---:|---:|---:|---|---:|")
     for r in results:
         x = m[r["name"]]
         steps = x["steps"] if x else "–"
@@ -610,8 +619,11 @@ def write_report(path, results, m, session):
         drift = fmt(x["B_maxabs"] / x["E_ref"]) if valid else "–"
         end = fmt(x["B_end"] / x["E_ref"]) if valid else "–"
         finite = "–" if not x else ("none" if x["finite"] else "**yes**")
-        lines.append(f"| {r['name']} | {r['description']} | {status_text(r)} | {steps} "
-                     f"| {r['cutbacks_in_log']} | {newton} | {drift} | {end} | {finite} "
+        tangents = r["statistics"]["factorizations_or_amg_setups"] \
+            if "statistics" in r else "–"
+        lines.append(f"| {r['name']} | {r['description']} | {status_text(r, x)} | {steps} "
+                     f"| {r['cutbacks_in_log']} | {newton} | {tangents} | {drift} | {end} "
+                     f"| {finite} "
                      f"| {r['measured_seconds']:.1f} |")
     lines.append("")
 
@@ -645,13 +657,37 @@ def write_report(path, results, m, session):
         if r.get("tip_frequency"):
             f, direction = r["tip_frequency"]
             f = f if isinstance(f, str) else f"{f:.4f} ({direction})"
+        gain = fmt(x["B_maxgain"])
+        if x["B_maxgain"] > 0:
+            gain += f" (t = {x['t_maxgain']:.4g})"
         lines.append(
             f"| {r['name']} | {x['end_time']:.3f} | {fmt(x['E_ref'])} | {fmt(x['K_max'])} "
-            f"| {fmt(x['B_step1'])} | {fmt(x['B_maxabs'])} | {fmt(x['B_maxgain'])} "
+            f"| {fmt(x['B_step1'])} | {fmt(x['B_maxabs'])} | {gain} "
             f"| {fmt(x['B_maxabs'] / x['K_max']) if x['K_max'] > 0 else '–'} "
             f"| {fmt(x['dt_min'])} | {reasons} | {stretch[0]} | {stretch[1]} | {stretch[2]} "
             f"| {f} |")
     lines.append("")
+
+    first = [r for r in results if m[r["name"]] and m[r["name"]]["steps"] >= 2
+             and m[r["name"]]["E_ref"] > 0
+             and abs(m[r["name"]]["B_step1"]) > 1e-3 * m[r["name"]]["E_ref"]]
+    if first:
+        lines.append("## The first steps\n")
+        lines.append("The cases whose balance moves by more than 1e-3 E_ref in the first "
+                     "step: the terms of B after each of the first three steps. E = K + S + "
+                     "G is a state function, computed afresh at every step; W and D are "
+                     "sums over the steps.\n")
+        lines.append("| case | step | t s | dt s | E − E(0) | W | D | B |")
+        lines.append("|---|---:|---:|---:|---:|---:|---:|---:|")
+        for r in first:
+            d = m[r["name"]]["d"]
+            E = d["kinetic"] + d["strain"] + d["gravity_potential"]
+            for i in range(1, min(4, len(E))):
+                lines.append(f"| {r['name']} | {i} | {d['t'][i]:.3g} | {d['dt'][i]:.3g} "
+                             f"| {fmt(E[i] - E[0])} | {fmt(d['traction_work'][i])} "
+                             f"| {fmt(d['damping_dissipation'][i])} "
+                             f"| {fmt(d['energy_balance'][i])} |")
+        lines.append("")
 
     initial = [r for r in results if r.get("vtu") and len(r["vtu"]) >= 1
                and r["name"].startswith("ds20_") and r["vtu"][0]["t"] == 0.
@@ -691,7 +727,7 @@ def write_report(path, results, m, session):
 
     lines.append("## The cases in detail\n")
     lines.append("Every run also gets `Output/Progress interval=0`, "
-                 "`Output/Spectral analysis` as in the last column of the table above, and "
+                 "`Output/Spectral analysis=true` where the tip-frequency column has an entry (else `false`), and "
                  "`Output/Write VTU=false` except where a VTU output is listed.\n")
     by_name = {case[0]: case for case in CASES}
     for r in results:
@@ -753,9 +789,11 @@ def main():
     session_path = output_root / "session.json"
     if arguments.report_only:
         results = [load_case(output_root, case[0]) for case in selected]
+        for result, case in zip(results, selected):
+            result["description"] = case[4]
         session = json.loads(session_path.read_text())
     else:
-        session = {"command": command, "machine": machine_description(),
+        session = {"command": command, "commit": commit(), "machine": machine_description(),
                    "load": ", ".join(f"{x:.2f}" for x in os.getloadavg()),
                    "date": time.strftime("%Y-%m-%d"), "timeout": arguments.timeout}
         start = time.perf_counter()

@@ -175,6 +175,7 @@ namespace SoftRobot
       double       beta;
       double       gamma;
       unsigned int regrowth_steps;
+      unsigned int max_cutbacks;
 
       static void
       declare_parameters(ParameterHandler &prm);

@@ -498,6 +498,15 @@ namespace SoftRobot
                         "Newmark gamma; a negative value selects the "
                         "standard 1/2 - alpha. The reference study used "
                         "0.75.");
+      prm.declare_entry("Max cutbacks",
+                        "1000",
+                        Patterns::Integer(1, 1000000000),
+                        "The run stops with an error (keeping the output "
+                        "written so far) after this many time-step cut "
+                        "backs in total. A motion that the mesh and the "
+                        "step cannot follow otherwise ends in thousands of "
+                        "tiny steps that never grow back, which looks like "
+                        "a hang.");
       prm.declare_entry("Regrowth steps",
                         "4",
                         Patterns::Integer(1, 1000),
@@ -518,6 +527,7 @@ namespace SoftRobot
       beta              = prm.get_double("Beta");
       gamma             = prm.get_double("Gamma");
       regrowth_steps    = prm.get_integer("Regrowth steps");
+      max_cutbacks      = prm.get_integer("Max cutbacks");
       prm.leave_subsection();
     }
 

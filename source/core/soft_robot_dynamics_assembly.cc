@@ -43,11 +43,12 @@ namespace SoftRobot
   // (NeoHookeanEnergy::evaluate_stress()), which costs a sixth of the full
   // evaluation.
   //
-  // The cells are processed by deal.II's WorkStream: the cell integrals
-  // (`local_assemble`, which holds nearly all of the arithmetic) run on
-  // all threads, the additions into the global matrices and vectors
-  // (`copy_local_to_global`) one after the other, in the order of the
-  // cells, so that the result does not depend on the number of threads.
+  // With the matrix, the cells are processed by deal.II's WorkStream: the
+  // cell integrals (`local_assemble`, which holds nearly all of the
+  // arithmetic) run on all threads, the additions into the global matrices
+  // and vectors (`copy_local_to_global`) one after the other, in the order
+  // of the cells, so that the result does not depend on the number of
+  // threads.
   // The number of threads is deal.II's default -- the cores divided among
   // the MPI processes of the machine -- and can be limited with the
   // environment variable DEAL_II_NUM_THREADS.
@@ -249,16 +250,30 @@ namespace SoftRobot
                                                next_damping_matrix);
     };
 
+    // A residual costs about a microsecond per linear tetrahedron, too
+    // little for the threads' synchronisation to pay (on the bellows it made
+    // the residual assembly slower); it runs in this thread.
     std::vector<unsigned int> cells(geometry.n_cells);
     std::iota(cells.begin(), cells.end(), 0U);
-    WorkStream::run(cells.data(),
-                    cells.data() + cells.size(),
-                    local_assemble,
-                    copy_local_to_global,
-                    AssemblyScratch<dim>(),
-                    CellContribution(),
-                    2 * MultithreadInfo::n_threads(),
-                    64);
+    if (with_matrix)
+      WorkStream::run(cells.data(),
+                      cells.data() + cells.size(),
+                      local_assemble,
+                      copy_local_to_global,
+                      AssemblyScratch<dim>(),
+                      CellContribution(),
+                      2 * MultithreadInfo::n_threads(),
+                      64);
+    else
+      {
+        AssemblyScratch<dim> scratch;
+        CellContribution     local;
+        for (const unsigned int &cell : cells)
+          {
+            local_assemble(&cell, scratch, local);
+            copy_local_to_global(local);
+          }
+      }
 
     if (with_matrix)
       system_matrix.compress(VectorOperation::add);

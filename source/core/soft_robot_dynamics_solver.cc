@@ -701,6 +701,19 @@ namespace SoftRobot
             pcout << "  step at t = " << previous.time + dt << " failed ("
                   << failure.what() << "); time step cut back to " << time_step
                   << " s" << std::endl;
+            if (total_cutbacks > parameters.max_cutbacks)
+              {
+                std::ostringstream message;
+                message << "More than " << parameters.max_cutbacks
+                        << " time-step cut backs (Time integration/Max "
+                           "cutbacks), the last at t = "
+                        << previous.time << " s with dt = " << dt
+                        << " s: " << failure.what()
+                        << ". The motion cannot be followed with this mesh "
+                           "and time step. The output up to this time has "
+                           "been kept.";
+                throw RunAborted(message.str());
+              }
             if (time_step < parameters.minimum_time_step)
               {
                 std::ostringstream message;
