@@ -12,6 +12,8 @@
 #   ./soft-robot.sh benchmark  build in Release, run the speed benchmark (and
 #                              CalculiX as the peer) one case at a time and
 #                              write doc/performance.md
+#   ./soft-robot.sh stability  build in Release, run the study of stiff and
+#                              extreme cases and write doc/stability.md
 #
 # Build directories: build-release/ and build-debug/ beside this script.
 set -euo pipefail
@@ -62,6 +64,12 @@ case "${1:-}" in
     build Release build-release -DSOFT_ROBOT_BUILD_TESTS=OFF
     /usr/bin/python3 doc/performance/run_benchmarks.py build-release "${@:2}"
     ;;
+  stability)
+    packages+=(python3-numpy python3-matplotlib)
+    install_missing_packages
+    build Release build-release -DSOFT_ROBOT_BUILD_TESTS=OFF
+    /usr/bin/python3 doc/stability/run_stability.py build-release "${@:2}"
+    ;;
   validate)
     packages+=(python3-matplotlib python3-numpy)
     install_missing_packages
@@ -91,7 +99,7 @@ case "${1:-}" in
     echo "Wrote doc/validation.md"
     ;;
   *)
-    echo "Usage: $0 demo|test|validate|benchmark" >&2
+    echo "Usage: $0 demo|test|validate|benchmark|stability" >&2
     exit 2
     ;;
 esac
