@@ -53,7 +53,6 @@ import base64
 import json
 import math
 import os
-import platform
 import re
 import shutil
 import signal
@@ -526,24 +525,9 @@ def plot_stretch(results, m, path):
 
 # @sect{The report}
 
-def machine_description():
-    model = "unknown CPU"
-    try:
-        for line in Path("/proc/cpuinfo").read_text().splitlines():
-            if line.startswith("model name"):
-                model = line.split(":", 1)[1].strip()
-                break
-    except OSError:
-        pass
-    return f"{os.cpu_count()} cores ({model}), {platform.system()} {platform.release()}"
-
-
-def commit():
-    try:
-        return subprocess.run(["git", "rev-parse", "--short", "HEAD"], cwd=REPOSITORY,
-                              capture_output=True, text=True).stdout.strip()
-    except OSError:
-        return "unknown"
+# The machine and the commit are described as in the speed benchmark.
+sys.path.insert(0, str(REPOSITORY / "doc" / "performance"))
+from run_benchmarks import commit, machine_description  # noqa: E402
 
 
 def fmt(value, digits=2):

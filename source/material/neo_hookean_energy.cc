@@ -62,6 +62,25 @@ namespace SoftRobot
         SymmetricTensor<2, dim>::unrolled_to_component_indices(a);
       return (indices[0] == indices[1]) ? 1. : 0.5;
     }
+
+    // $\mathbf E$ with its independent components as Sacado variables:
+    // `variable(a, value)` makes the number of component a.
+    template <int dim, typename ADNumber, typename MakeVariable>
+    SymmetricTensor<2, dim, ADNumber>
+    independent_strain(const SymmetricTensor<2, dim> &E,
+                       const MakeVariable            &variable)
+    {
+      SymmetricTensor<2, dim, ADNumber> E_ad;
+      for (unsigned int a = 0;
+           a < SymmetricTensor<2, dim>::n_independent_components;
+           ++a)
+        {
+          const TableIndices<2> ij =
+            SymmetricTensor<2, dim>::unrolled_to_component_indices(a);
+          E_ad[ij] = variable(a, E[ij]);
+        }
+      return E_ad;
+    }
   } // namespace
 
 
@@ -77,15 +96,10 @@ namespace SoftRobot
 
     const SymmetricTensor<2, dim> E =
       green_lagrange_strain(displacement_gradient);
-    SymmetricTensor<2, dim, ADNumber> E_ad;
-    for (unsigned int a = 0; a < n; ++a)
-      {
-        const TableIndices<2> ij =
-          SymmetricTensor<2, dim>::unrolled_to_component_indices(a);
-        E_ad[ij] = ADNumber(n, a, Inner(n, a, E[ij]));
-      }
-
-    const ADNumber psi = energy(E_ad);
+    const ADNumber psi = energy(independent_strain<dim, ADNumber>(
+      E, [](const unsigned int a, const double value) {
+        return ADNumber(n, a, Inner(n, a, value));
+      }));
     response.energy    = psi.val().val();
     for (unsigned int a = 0; a < n; ++a)
       {
@@ -116,14 +130,10 @@ namespace SoftRobot
 
     const SymmetricTensor<2, dim> E =
       green_lagrange_strain(displacement_gradient);
-    SymmetricTensor<2, dim, ADNumber> E_ad;
-    for (unsigned int a = 0; a < n; ++a)
-      {
-        const TableIndices<2> ij =
-          SymmetricTensor<2, dim>::unrolled_to_component_indices(a);
-        E_ad[ij] = ADNumber(n, a, E[ij]);
-      }
-    const ADNumber psi = energy(E_ad);
+    const ADNumber psi = energy(independent_strain<dim, ADNumber>(
+      E, [](const unsigned int a, const double value) {
+        return ADNumber(n, a, value);
+      }));
     response.energy    = psi.val();
     for (unsigned int a = 0; a < n; ++a)
       response.second_piola[SymmetricTensor<2, dim>::
