@@ -166,15 +166,15 @@ def section(statistics, *names):
     return sum(statistics["sections"].get(name, 0.) for name in names)
 
 
-def write_report(path, results, calculix, command):
+def write_report(path, results, calculix, run):
     lines = []
     lines.append("<!-- Written by doc/performance/run_benchmarks.py; "
                  "the discussion is in doc/performance_discussion.md. -->")
     lines.append("# Performance\n")
-    lines.append(f"Command: `{command}`  ")
-    lines.append(f"Commit: `{commit()}`, Release build  ")
-    lines.append(f"Machine: {machine_description()}  ")
-    lines.append(f"Date: {time.strftime('%Y-%m-%d')}\n")
+    lines.append(f"Command: `{run['command']}`  ")
+    lines.append(f"Commit: `{run['commit']}`, Release build  ")
+    lines.append(f"Machine: {run['machine']}  ")
+    lines.append(f"Date: {run['date']}\n")
     lines.append("All times are wall-clock seconds of the whole run (mesh, "
                  "set-up, initial static equilibrium, time loop, output, "
                  "spectral analysis), as the program measures them; cases run "
@@ -256,7 +256,13 @@ def write_report(path, results, calculix, command):
             previous = (dofs, per_iteration)
         lines.append("")
 
-    discussion = REPOSITORY / "doc" / "performance_discussion.md"
+    write_with_discussion(path, lines, "performance_discussion.md")
+
+
+def write_with_discussion(path, lines, discussion_name):
+    """Writes the generated lines and then the hand-written discussion,
+    doc/<discussion_name>, if it exists."""
+    discussion = REPOSITORY / "doc" / discussion_name
     if discussion.exists():
         lines.append(discussion.read_text())
     path.write_text("\n".join(lines) + "\n")
@@ -289,6 +295,17 @@ def main():
     output_root = (REPOSITORY / arguments.output).resolve()
     output_root.mkdir(parents=True, exist_ok=True)
 
+    # What the report says about the run: kept with the results, so that a
+    # report written later (--report-only) names the commit that ran.
+    run_file = output_root / "benchmark_run.json"
+    if arguments.report_only:
+        run = json.loads(run_file.read_text())
+    else:
+        run = {"command": "./soft-robot.sh benchmark" + (
+                   f" (cases: {arguments.cases})" if arguments.cases else ""),
+               "commit": commit(), "machine": machine_description(),
+               "date": time.strftime("%Y-%m-%d")}
+        run_file.write_text(json.dumps(run, indent=2) + "\n")
     results = [(case[0], case[4], run_case(build, output_root, case, arguments.report_only))
                for case in selected]
     if arguments.report_only:
@@ -296,9 +313,7 @@ def main():
         calculix = json.loads(peer.read_text()) if peer.exists() else None
     else:
         calculix = None if arguments.skip_calculix else run_calculix(output_root)
-    command = "./soft-robot.sh benchmark" + (
-        f" (cases: {arguments.cases})" if arguments.cases else "")
-    write_report(REPOSITORY / arguments.report, results, calculix, command)
+    write_report(REPOSITORY / arguments.report, results, calculix, run)
 
 
 if __name__ == "__main__":

@@ -527,7 +527,8 @@ def plot_stretch(results, m, path):
 
 # The machine and the commit are described as in the speed benchmark.
 sys.path.insert(0, str(REPOSITORY / "doc" / "performance"))
-from run_benchmarks import commit, machine_description  # noqa: E402
+from run_benchmarks import (commit, machine_description,  # noqa: E402
+                            write_with_discussion)
 
 
 def fmt(value, digits=2):
@@ -728,11 +729,7 @@ def write_report(path, results, m, session):
             lines.append("  ```")
     lines.append("")
 
-    discussion = REPOSITORY / "doc" / "stability_discussion.md"
-    if discussion.exists():
-        lines.append(discussion.read_text())
-    path.write_text("\n".join(lines) + "\n")
-    print(f"wrote {path}")
+    write_with_discussion(path, lines, "stability_discussion.md")
 
 
 def main():
