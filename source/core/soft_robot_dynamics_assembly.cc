@@ -77,6 +77,7 @@ namespace SoftRobot
       double                               strain_energy = 0.;
       double min_jacobian  = std::numeric_limits<double>::max();
       bool   inverted      = false;
+      unsigned int cell    = 0;
       bool   with_matrix   = false;
       bool   with_damping  = false;
     };
@@ -101,24 +102,50 @@ namespace SoftRobot
     const unsigned int  n_q_points    = geometry.n_q_points;
     const std::vector<unsigned int> &component = geometry.components;
 
-    // The displacements of the cells' dofs, read once from the ghosted
-    // vector, so that the threads only read a plain array.
-    std::vector<double> cell_values(geometry.dof_indices.size());
-    {
-      TrilinosWrappers::MPI::Vector u_ghosted(locally_owned_dofs,
-                                              locally_relevant_dofs,
-                                              mpi_communicator);
-      u_ghosted = u;
-      for (std::size_t k = 0; k < cell_values.size(); ++k)
-        cell_values[k] = u_ghosted(geometry.dof_indices[k]);
-    }
-
     const bool with_damping = with_matrix && has_damping && with_damping_matrix;
     if (with_matrix)
       system_matrix = 0.;
     if (with_damping)
       next_damping_matrix = 0.;
     internal_force = 0.;
+
+    // In serial runs the cell contributions go straight to the value arrays
+    // of the matrices and the force vector, at the addresses that
+    // setup_cell_geometry() computed.
+    const bool direct_addresses = !geometry.matrix_positions.empty();
+    double    *matrix_values = nullptr, *damping_values = nullptr;
+    if (direct_addresses)
+      {
+        int *offsets = nullptr, *columns = nullptr;
+        system_matrix.trilinos_matrix().ExtractCrsDataPointers(offsets,
+                                                               columns,
+                                                               matrix_values);
+        if (with_damping)
+          next_damping_matrix.trilinos_matrix().ExtractCrsDataPointers(
+            offsets, columns, damping_values);
+      }
+    double *force_values = internal_force.trilinos_vector()[0];
+
+    // The displacements of the cells' dofs, read once (from the ghosted
+    // vector in parallel), so that the threads only read a plain array.
+    std::vector<double> cell_values(geometry.dof_indices.size());
+    if (direct_addresses)
+      {
+        const double *u_values = u.trilinos_vector()[0];
+        for (std::size_t k = 0; k < cell_values.size(); ++k)
+          cell_values[k] = (geometry.vector_positions[k] >= 0) ?
+                             u_values[geometry.vector_positions[k]] :
+                             0.;
+      }
+    else
+      {
+        TrilinosWrappers::MPI::Vector u_ghosted(locally_owned_dofs,
+                                                locally_relevant_dofs,
+                                                mpi_communicator);
+        u_ghosted = u;
+        for (std::size_t k = 0; k < cell_values.size(); ++k)
+          cell_values[k] = u_ghosted(geometry.dof_indices[k]);
+      }
 
     // The integrals over one cell.
     const auto local_assemble = [&](const unsigned int   *cell_pointer,
@@ -135,6 +162,7 @@ namespace SoftRobot
           local.force.reinit(dofs_per_cell);
           local.dof_indices.resize(dofs_per_cell);
         }
+      local.cell          = cell;
       local.with_matrix   = with_matrix;
       local.with_damping  = with_damping;
       local.strain_energy = 0.;
@@ -227,6 +255,50 @@ namespace SoftRobot
             }
     };
 
+    // The additions of a cell's contributions at the direct addresses. A
+    // constrained dof's row and column are left out, and its diagonal gets
+    // the absolute value of the cell matrix's diagonal entry (if that is
+    // zero, the mean absolute diagonal entry), as
+    // AffineConstraints::distribute_local_to_global() does: it keeps the
+    // matrix regular and of the scale of its other entries.
+    const unsigned int dofs_squared = dofs_per_cell * dofs_per_cell;
+    const auto add_with_direct_addresses = [&](const CellContribution &local) {
+      const int *vector_position =
+        &geometry.vector_positions[local.cell * dofs_per_cell];
+      for (unsigned int i = 0; i < dofs_per_cell; ++i)
+        if (vector_position[i] >= 0)
+          force_values[vector_position[i]] += local.force(i);
+      if (!local.with_matrix)
+        return;
+      const int *matrix_position =
+        &geometry.matrix_positions[local.cell * dofs_squared];
+      const int *diagonal_position =
+        &geometry.diagonal_positions[local.cell * dofs_per_cell];
+      const auto add = [&](const FullMatrix<double> &cell_matrix,
+                           double                   *values) {
+        const double *entries = &cell_matrix(0, 0);
+        for (unsigned int k = 0; k < dofs_squared; ++k)
+          if (matrix_position[k] >= 0)
+            values[matrix_position[k]] += entries[k];
+        double mean_diagonal = 0.;
+        for (unsigned int i = 0; i < dofs_per_cell; ++i)
+          mean_diagonal += std::abs(cell_matrix(i, i));
+        mean_diagonal /= dofs_per_cell;
+        if (mean_diagonal == 0.)
+          mean_diagonal = cell_matrix.l1_norm() / dofs_per_cell;
+        if (mean_diagonal == 0.)
+          mean_diagonal = 1.;
+        for (unsigned int i = 0; i < dofs_per_cell; ++i)
+          if (diagonal_position[i] >= 0)
+            values[diagonal_position[i]] += (cell_matrix(i, i) != 0.) ?
+                                              std::abs(cell_matrix(i, i)) :
+                                              mean_diagonal;
+      };
+      add(local.matrix, matrix_values);
+      if (local.with_damping)
+        add(local.damping, damping_values);
+    };
+
     // The additions into the global objects, in the order of the cells.
     AssemblyResult result;
     const auto     copy_local_to_global = [&](const CellContribution &local) {
@@ -234,6 +306,11 @@ namespace SoftRobot
       result.min_jacobian = std::min(result.min_jacobian, local.min_jacobian);
       result.inverted_point_found =
         result.inverted_point_found || local.inverted;
+      if (direct_addresses)
+        {
+          add_with_direct_addresses(local);
+          return;
+        }
       if (local.with_matrix)
         constraints.distribute_local_to_global(local.matrix,
                                                local.force,
