@@ -356,7 +356,10 @@ namespace SoftRobot
       system_matrix.compress(VectorOperation::add);
     if (with_damping)
       next_damping_matrix.compress(VectorOperation::add);
-    internal_force.compress(VectorOperation::add);
+    // (With direct addresses the vector was not touched through deal.II,
+    // and one process has nothing to exchange.)
+    if (!direct_addresses)
+      internal_force.compress(VectorOperation::add);
 
     result.strain_energy =
       Utilities::MPI::sum(result.strain_energy, mpi_communicator);
