@@ -16,12 +16,12 @@ measures both.
 Every case is parameters/bellows/vertical_ds20_3d.prm (experiment 1,
 Dragon Skin 20, quarter model) with `--set` overrides: the silicone's
 `Bulk-to-shear ratio` in its library entry (kappa/mu), the mesh (coarse,
-medium, fine, or the coarse mesh refined once) and the polynomial degree.
+medium, fine, or the coarse mesh refined once) and the polynomial degree
+(1 on every mesh, 2 on the coarse and the medium one).
 All frequency cases run the same shortened record, `Time integration/End
 time = 2.5` (about 9 periods), without VTU output; the baseline (P1 coarse,
 kappa/mu = 100) also runs the scene's full 5.25 s once, to show what the
-shorter record changes. One more case runs a few steps of quadratic
-elements on the medium mesh, only to measure their cost per step.
+shorter record changes.
 
 For each case the script records whether the run finished (exit code; a run
 that stops prints "The simulation stopped:" and exits 2, a result in its
@@ -36,7 +36,19 @@ the three P1 coarse cases write the initial (held, static) state as VTU,
 from which the script reads the volume-weighted mean |1 - J| of the
 silicone: it must fall as kappa rises, if the override took effect.
 
-A case that runs longer than --timeout seconds is killed (its whole process
+Without --cases the script runs every case and the report shows them.
+With --cases it runs only those and the report shows them together with the
+cases of earlier runs found in the output directory; the file
+locking_run.json there keeps each run's command, commit, date and duration
+for the report's header (a run of all cases starts it afresh).
+--report-only writes the report from the output directory alone.
+
+The cost. On 2 shared cores with one thread the P1 cases and P2 on the
+coarse mesh took 18 minutes together, P2 on the medium mesh 28 more (the
+one with kappa/mu = 1e4 alone 15 minutes); leave the p2_medium cases out
+with --cases for a quicker run.
+
+A case that runs longer than --timeout seconds (default 1800) is killed (its whole process
 group) and reported as a hang. The program runs with --threads threads
 (DEAL_II_NUM_THREADS; default 1, so that a shared machine keeps a core).
 
@@ -93,13 +105,15 @@ DISCRETISATIONS = [
     ("p1_fine", "P1 fine", [f"Geometry/Mesh file={MESHES}_fine.msh"], "o"),
     ("p1_refined", "P1 coarse refined once", ["Geometry/Global refinements=1"], "s"),
     ("p2_coarse", "P2 coarse", ["Finite element/Polynomial degree=2"], "*"),
+    ("p2_medium", "P2 medium", [f"Geometry/Mesh file={MESHES}_medium.msh",
+                                "Finite element/Polynomial degree=2"], "*"),
 ]
 LABEL = {d[0]: d[1] for d in DISCRETISATIONS}
 MARKER = {d[0]: d[3] for d in DISCRETISATIONS}
-# The result a table's "change" column compares with: quadratic elements,
-# the most accurate per unknown and the least locking of the discretisations
-# run. If it did not finish, the finished linear case with the most dofs.
-REFERENCE = "p2_coarse"
+# The result a table's "change" column compares with: the first of these
+# that finished (quadratic elements lock least and are the most accurate per
+# unknown), else the finished linear case with the most dofs.
+REFERENCES = ["p2_medium", "p2_coarse"]
 
 
 def kappa_tag(kappa):
@@ -111,8 +125,8 @@ def kappa_text(kappa):
 
 
 # name, discretisation, kappa/mu, overrides, kind, VTU of the initial state,
-# description. kind: "record" (the study's shortened record), "full" (the
-# scene's 5.25 s) or "window" (a few steps for the cost only).
+# description. kind: "record" (the study's shortened record) or "full" (the
+# scene's 5.25 s).
 CASES = []
 for key, label, overrides, _ in DISCRETISATIONS:
     for kappa in KAPPAS:
@@ -124,20 +138,12 @@ for key, label, overrides, _ in DISCRETISATIONS:
 CASES.append(("p1_coarse_k1e2_full", "p1_coarse", 100.,
               [f"{DS20}/Bulk-to-shear ratio=100"], "full", False,
               f"P1 coarse, kappa/mu = 1e2, the scene's full {FULL:g} s"))
-CASES.append(("p2_medium_k1e2_window", "p2_medium", 100.,
-              [f"Geometry/Mesh file={MESHES}_medium.msh",
-               "Finite element/Polynomial degree=2",
-               f"{DS20}/Bulk-to-shear ratio=100",
-               "Time integration/End time=0.03", "Output/Spectral analysis=false"],
-              "window", False,
-              "P2 medium, kappa/mu = 1e2, first 0.03 s (3 steps): cost per step only"))
 CASE_NAMES = [case[0] for case in CASES]
 # The order of the runs: the cheap cases first.
 RUN_ORDER = (["p1_coarse_k1e2_full"]
-             + [n for d in ("p1_coarse", "p1_medium", "p1_fine", "p2_coarse")
-                for n in CASE_NAMES if n.startswith(d + "_k") and not n.endswith("_full")]
-             + ["p2_medium_k1e2_window"]
-             + [n for n in CASE_NAMES if n.startswith("p1_refined_")])
+             + [n for d in ("p1_coarse", "p1_medium", "p1_fine", "p2_coarse", "p1_refined",
+                            "p2_medium")
+                for n in CASE_NAMES if n.startswith(d + "_k") and not n.endswith("_full")])
 assert sorted(RUN_ORDER) == sorted(CASE_NAMES)
 
 
@@ -321,49 +327,57 @@ def status_text(r):
 
 def reference_of(by_key):
     """The case each kappa's "change" column compares with."""
-    reference = by_key.get(REFERENCE)
-    if reference and reference[1]["finished"] and reference[1]["f_fit"]:
-        return REFERENCE
+    for key in REFERENCES:
+        if key in by_key and by_key[key][1]["finished"] and by_key[key][1]["f_fit"]:
+            return key
     p1 = [(m["dofs"], key) for key, (_, m) in by_key.items()
           if key.startswith("p1") and m["finished"] and m["f_fit"]]
     return max(p1)[1] if p1 else None
 
 
+# One colour per kappa/mu, one per discretisation.
+KAPPA_COLORS = ["tab:blue", "tab:green", "tab:red"]
+DISCRETISATION_COLORS = ["tab:blue", "tab:orange", "tab:green", "tab:purple", "tab:red",
+                         "tab:brown"]
+
+
 def plot_frequency_against_dofs(groups, path):
-    figure, axes = plt.subplots(1, 2, figsize=(12, 4.6))
+    """Left: the frequency against the dofs; right: against the cost of a
+    step."""
+    figure, axes = plt.subplots(1, 2, figsize=(12, 5.0))
     for i, (kappa, by_key) in enumerate(groups):
-        color = f"C{i}"
-        for ax, field in zip(axes, ("f_fit", "f_peak")):
-            series = [(by_key[k][1]["dofs"], by_key[k][1][field])
-                      for k in ("p1_coarse", "p1_medium", "p1_fine")
-                      if k in by_key and by_key[k][1][field]]
-            if series:
-                ax.plot(*zip(*series), "-o", color=color, ms=5,
-                        label=f"P1, κ/μ = {kappa_text(kappa)} (coarse, medium, fine)")
-            for key, size in (("p1_refined", 6), ("p2_coarse", 13)):
-                if key in by_key and by_key[key][1][field]:
-                    m = by_key[key][1]
-                    ax.plot([m["dofs"]], [m[field]], MARKER[key], color=color, ms=size,
-                            mfc="none" if key == "p1_refined" else color,
-                            label=f"{LABEL[key]}, κ/μ = {kappa_text(kappa)}")
-                    if "p1_coarse" in by_key and by_key["p1_coarse"][1][field]:
-                        c = by_key["p1_coarse"][1]
-                        ax.plot([c["dofs"], m["dofs"]], [c[field], m[field]],
-                                ":" if key == "p2_coarse" else "--", color=color, lw=0.9)
-    for ax, title in zip(axes, ("modal fit (f_damped_fit_Hz)",
-                                "FFT peak (f_peak_Hz, interpolated)")):
+        color = KAPPA_COLORS[i % len(KAPPA_COLORS)]
+        for ax, cost in zip(axes, ("dofs", "ms_per_step")):
+            def series(keys):
+                return [(by_key[k][1][cost], by_key[k][1]["f_fit"]) for k in keys
+                        if k in by_key and by_key[k][1]["f_fit"] and by_key[k][1][cost]]
+            p1 = series(("p1_coarse", "p1_medium", "p1_fine"))
+            if p1:
+                ax.plot(*zip(*p1), "-o", color=color, ms=5,
+                        label=f"P1 coarse, medium, fine; κ/μ = {kappa_text(kappa)}")
+            refined = series(("p1_coarse", "p1_refined"))
+            if len(refined) == 2:
+                ax.plot(*zip(*refined), "--", color=color, lw=0.9)
+                ax.plot(*refined[1], "s", color=color, ms=7, mfc="none",
+                        label=f"P1 coarse refined once; κ/μ = {kappa_text(kappa)}")
+            p2 = series(("p2_coarse", "p2_medium"))
+            if p2:
+                ax.plot(*zip(*p2), "-*", color=color, ms=13, lw=1.6,
+                        label=f"P2 coarse, medium; κ/μ = {kappa_text(kappa)}")
+    for ax, label in zip(axes, ("degrees of freedom",
+                                "cost: ms per time step (1 process; see the tables)")):
         ax.set_xscale("log")
-        ax.set_xlabel("degrees of freedom")
-        ax.set_ylabel("tip frequency (Hz)")
-        ax.set_title(title, fontsize=10)
+        ax.set_xlabel(label)
+        ax.set_ylabel("tip frequency, modal fit (Hz)")
         ax.grid(alpha=0.3, which="both")
     handles, labels = axes[0].get_legend_handles_labels()
     figure.legend(handles, labels, fontsize=7, ncol=3, loc="lower center")
-    figure.suptitle("Experiment 1, Dragon Skin 20: tip frequency against refinement. "
-                    "Circles and lines: linear tetrahedra on the three meshes; open "
+    figure.suptitle("Experiment 1, Dragon Skin 20: tip frequency against refinement (left) "
+                    "and against the cost of a step (right), one colour per κ/μ.\n"
+                    "Circles: linear tetrahedra on the coarse, medium and fine meshes; open "
                     "squares (dashed from the coarse mesh): linear, coarse mesh refined "
-                    "once; stars (dotted): quadratic on the coarse mesh", fontsize=9)
-    figure.tight_layout(rect=(0, 0.16, 1, 0.95))
+                    "once;\nstars: quadratic on the coarse and the medium mesh", fontsize=9)
+    figure.tight_layout(rect=(0, 0.13, 1, 0.98))
     figure.savefig(path, dpi=110)
     plt.close(figure)
 
@@ -374,8 +388,9 @@ def plot_frequency_against_kappa(groups, path):
         series = [(kappa, by_key[key][1]["f_fit"]) for kappa, by_key in groups
                   if key in by_key and by_key[key][1]["f_fit"]]
         if series:
-            ax.plot(*zip(*series), "-" + marker, color=f"C{j}", ms=11 if marker == "*" else 6,
-                    label=label)
+            ax.plot(*zip(*series), ("--" if key.startswith("p2") else "-") + marker,
+                    color=DISCRETISATION_COLORS[j % len(DISCRETISATION_COLORS)],
+                    ms=11 if marker == "*" else 6, label=label)
     ax.set_xscale("log")
     ax.set_xlabel("κ/μ of the silicone")
     ax.set_ylabel("tip frequency, modal fit (Hz)")
@@ -406,14 +421,30 @@ def write_report(path, results, session):
     lines.append("<!-- Written by doc/locking/run_locking.py; "
                  "the discussion is in doc/locking_discussion.md. -->")
     lines.append("# Locking: the experiment-1 frequency against refinement and κ/μ\n")
-    lines.append(f"Command: `{session['command']}`  ")
-    lines.append(f"Commit: `{session['commit']}` (HEAD when the study started), "
-                 "Release build  ")
-    lines.append(f"Machine: {session['machine']}; load average at the start "
-                 f"{session['load']}; the program ran with {session['threads']} "
-                 f"thread(s), one case at a time  ")
-    lines.append(f"Date: {session['date']}; the whole study took "
-                 f"{session['total_seconds']:.0f} s ({session['total_seconds'] / 60:.1f} min)\n")
+    runs = session["runs"]
+    total = sum(run["total_seconds"] for run in runs)
+    if len(runs) == 1:
+        run = runs[0]
+        lines.append(f"Command: `{run['command']}`  ")
+        lines.append(f"Commit: `{run['commit']}` (HEAD when the study started), "
+                     "Release build  ")
+        lines.append(f"Machine: {run['machine']}; load average at the start "
+                     f"{run['load']}; the program ran with {run['threads']} "
+                     f"thread(s), one case at a time  ")
+        lines.append(f"Date: {run['date']}; the whole study took "
+                     f"{total:.0f} s ({total / 60:.1f} min)\n")
+    else:
+        lines.append(f"The results come from {len(runs)} runs of the script (a run "
+                     "with `--cases` adds its cases to those of the earlier runs); "
+                     f"together they took {total:.0f} s ({total / 60:.1f} min). "
+                     "Release build; the program ran one case at a time.\n")
+        for run in runs:
+            cases = ", ".join(run["cases"]) if run.get("cases") else "all cases"
+            lines.append(f"- `{run['command']}`: commit `{run['commit']}`, "
+                         f"{run['date']}, {run['total_seconds']:.0f} s, "
+                         f"{run['threads']} thread(s), load average at the start "
+                         f"{run['load']}; {run['machine']}; {cases}")
+        lines.append("")
     lines.append(
         f"Scene: `{SCENE}` (experiment 1, vertical oscillation after the hold is let go; "
         "Dragon Skin 20, baseline μ = 116 kPa; quarter model; HHT α = −0.25, "
@@ -424,16 +455,19 @@ def write_report(path, results, session):
         "`Finite element/Polynomial degree` (1: linear tetrahedra, P1; 2: quadratic, "
         "P2). The program has no mixed or F-bar formulation; the quadratic elements "
         "are the option it has against locking.\n")
+    cycles = [m[r["name"]]["cycles"] for r in record if m[r["name"]]["cycles"]]
+    periods = f", {min(cycles):.1f} to {max(cycles):.1f} periods" if cycles else ""
     lines.append(
         f"All frequency cases run the same shortened record, `Time integration/End "
-        f"time={RECORD:g}` (250 steps, about 9 to 12 periods), with `Output/Write "
+        f"time={RECORD:g}` ({RECORD / 0.01:.0f} steps{periods}), with `Output/Write "
         "VTU=false`. The frequencies are the `vertical` row of the program's "
         "`tip_spectrum.csv`: the FFT peak `f_peak_Hz` (interpolated between bins of "
         f"1/T = {1 / (RECORD + 0.01):.3f} Hz) and the damped frequency `f_damped_fit_Hz` "
         "and damping ratio `xi_fit` of the modal fit (a damped sinusoid fitted to the "
         "record). \"change\" is the relative difference of the modal-fit frequency "
         "from the reference of the same κ/μ (marked **ref**): the quadratic elements "
-        "on the coarse mesh, the discretisation that locks least. Newton/step "
+        "on the finest mesh they ran on (medium, else coarse), the discretisation "
+        "that locks least. Newton/step "
         "counts all Newton iterations of the run over its steps; ms/step is the "
         "time loop (the wall time less mesh, set-up and the initial static "
         "equilibrium) per step; wall s is the whole run as the program measures it "
@@ -521,8 +555,7 @@ def write_report(path, results, session):
                      "under gravity and the hold) as VTU; from it the volume-weighted "
                      "mean of |1 − J| per material, with J from the displacements of "
                      "each tetrahedron. A larger κ of the silicone must make the "
-                     "silicone's value smaller and leave the tip block's (whose κ is "
-                     "not changed) nearly the same.\n")
+                     "silicone's value smaller; the tip block's κ is not changed.\n")
         lines.append("| case | mean \\|1 − J\\| silicone | ratio to κ/μ = 1e2 | mean "
                      "\\|1 − J\\| tip block | printed material data |")
         lines.append("|---|---:|---:|---:|---|")
@@ -533,26 +566,6 @@ def write_report(path, results, session):
             lines.append(f"| {r['name']} | {v['silicone']:.3e} | {ratio} | {v['block']:.3e} "
                          f"| {'<br>'.join(r['materials'])} |")
         lines.append("")
-
-    window = by_name.get("p2_medium_k1e2_window")
-    if window:
-        x = m[window["name"]]
-        lines.append("## Quadratic elements on the medium mesh: the cost\n")
-        if x["ms_per_step"] is not None:
-            projected = x["ms_per_step"] * RECORD / 0.01 / 1000 + (x["initial_state"] or 0.)
-            lines.append(
-                f"P2 on the medium mesh, κ/μ = 1e2, run for {x['steps']} steps only: "
-                f"{x['cells']} cells, {x['dofs']} dofs, {x['newton']:.2f} Newton "
-                f"iterations per step, **{x['ms_per_step']:.0f} ms per step** in the time "
-                f"loop, {x['initial_state']:.1f} s for the initial static equilibrium, "
-                f"{x['wall']:.1f} s in all, peak memory "
-                f"{window['statistics']['peak_memory_mb']:.0f} MB. The study's {RECORD:g} s "
-                f"record would take about {projected:.0f} s "
-                f"({projected / 60:.0f} min) per κ/μ at this rate (more where κ/μ "
-                "needs more Newton iterations), so it is not part of the study.\n")
-        else:
-            lines.append(f"P2 on the medium mesh did not finish its few steps: "
-                         f"{status_text(window)}.\n")
 
     lines.append("## The cases in detail\n")
     lines.append("Every run also gets `Output/Progress interval=0` and `Output/Write "
@@ -584,8 +597,8 @@ def main():
     parser.add_argument("--cases", help="comma-separated case names (default: all)")
     parser.add_argument("--output", default="output/locking")
     parser.add_argument("--report", default="doc/locking.md")
-    parser.add_argument("--timeout", type=float, default=900.,
-                        help="seconds after which a case is killed (default 900)")
+    parser.add_argument("--timeout", type=float, default=1800.,
+                        help="seconds after which a case is killed (default 1800)")
     parser.add_argument("--threads", type=int, default=1,
                         help="threads of the program (DEAL_II_NUM_THREADS, default 1)")
     parser.add_argument("--report-only", action="store_true",
@@ -614,22 +627,36 @@ def main():
     command = f"/usr/bin/python3 doc/locking/run_locking.py {build_shown}" + (
         f" --cases {arguments.cases}" if arguments.cases else "") + (
         f" --threads {arguments.threads}" if arguments.threads != 1 else "")
-    # What the report says about the run: kept with the results, so that a
-    # report written later (--report-only) names the commit that ran.
+    # What the report says about the runs: kept with the results, so that a
+    # report written later (--report-only) names the commit that ran. A run
+    # of all cases starts the list afresh; a run with --cases adds itself to
+    # it, and the report shows its cases with those of the earlier runs.
     session_path = output_root / "locking_run.json"
+    session = json.loads(session_path.read_text()) if session_path.exists() else {}
+    if "runs" not in session:  # the file of a single run
+        session = {"runs": [session] if session else []}
     if arguments.report_only:
-        results = [load_case(output_root, name) for name in selected]
-        session = json.loads(session_path.read_text())
+        if arguments.cases:
+            results = [load_case(output_root, name) for name in selected]
+        else:
+            results = [load_case(output_root, name) for name in RUN_ORDER
+                       if (output_root / name / "result.json").exists()]
     else:
-        session = {"command": command, "commit": commit(), "machine": machine_description(),
-                   "load": ", ".join(f"{x:.2f}" for x in os.getloadavg()),
-                   "date": time.strftime("%Y-%m-%d"), "timeout": arguments.timeout,
-                   "threads": arguments.threads}
+        run = {"command": command, "commit": commit(), "machine": machine_description(),
+               "load": ", ".join(f"{x:.2f}" for x in os.getloadavg()),
+               "date": time.strftime("%Y-%m-%d"), "timeout": arguments.timeout,
+               "threads": arguments.threads, "cases": arguments.cases.split(",")
+               if arguments.cases else None}
         start = time.perf_counter()
         results = [run_case(build, output_root, by_name[name], arguments.timeout,
                             arguments.threads) for name in selected]
-        session["total_seconds"] = time.perf_counter() - start
+        run["total_seconds"] = time.perf_counter() - start
+        session["runs"] = (session["runs"] if arguments.cases else []) + [run]
         session_path.write_text(json.dumps(session, indent=1) + "\n")
+        if arguments.cases:
+            results += [load_case(output_root, name) for name in RUN_ORDER
+                        if name not in selected
+                        and (output_root / name / "result.json").exists()]
     # The report lists the cases in the order of CASES, not of the runs.
     results.sort(key=lambda r: CASE_NAMES.index(r["name"]))
     write_report(REPOSITORY / arguments.report, results, session)
