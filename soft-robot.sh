@@ -14,6 +14,9 @@
 #                              write doc/performance.md
 #   ./soft-robot.sh stability  build in Release, run the study of stiff and
 #                              extreme cases and write doc/stability.md
+#   ./soft-robot.sh locking    build in Release, run the locking study (linear
+#                              and quadratic elements, kappa/mu up to 1e4) and
+#                              write doc/locking.md (about 45 minutes)
 #
 # Build directories: build-release/ and build-debug/ beside this script.
 set -euo pipefail
@@ -64,6 +67,12 @@ case "${1:-}" in
     build Release build-release -DSOFT_ROBOT_BUILD_TESTS=OFF
     /usr/bin/python3 doc/performance/run_benchmarks.py build-release "${@:2}"
     ;;
+  locking)
+    packages+=(python3-numpy python3-matplotlib)
+    install_missing_packages
+    build Release build-release -DSOFT_ROBOT_BUILD_TESTS=OFF
+    /usr/bin/python3 doc/locking/run_locking.py build-release "${@:2}"
+    ;;
   stability)
     packages+=(python3-numpy python3-matplotlib)
     install_missing_packages
@@ -99,7 +108,7 @@ case "${1:-}" in
     echo "Wrote doc/validation.md"
     ;;
   *)
-    echo "Usage: $0 demo|test|validate|benchmark|stability" >&2
+    echo "Usage: $0 demo|test|validate|benchmark|stability|locking" >&2
     exit 2
     ;;
 esac
