@@ -62,8 +62,6 @@ import math
 import os
 import re
 import shutil
-import signal
-import subprocess
 import sys
 import time
 from pathlib import Path
@@ -85,7 +83,7 @@ sys.path.insert(0, str(REPOSITORY / "doc" / "stability"))
 from run_benchmarks import (commit, machine_description,  # noqa: E402
                             write_with_discussion)
 from run_stability import (cutbacks_from_log, deformation_of_cells,  # noqa: E402
-                           printed_materials, read_trajectory, read_vtu, relative)
+                           read_trajectory, read_vtu, run_program)
 
 SCENE = "parameters/bellows/vertical_ds20_3d.prm"
 # Dragon Skin 20's entry in parameters/silicones.prm.
@@ -208,37 +206,9 @@ def run_case(build, output_root, case, timeout, threads):
     environment = dict(os.environ, OMP_NUM_THREADS="1", DEAL_II_NUM_THREADS=str(threads))
     print(f"[{name}] {description}", flush=True)
 
-    start = time.perf_counter()
-    with open(output / "run.log", "w") as log:
-        process = subprocess.Popen(command, cwd=REPOSITORY, env=environment,
-                                   stdout=log, stderr=subprocess.STDOUT,
-                                   start_new_session=True)
-        timed_out = False
-        try:
-            exit_code = process.wait(timeout=timeout)
-        except subprocess.TimeoutExpired:
-            timed_out = True
-            os.killpg(process.pid, signal.SIGKILL)
-            exit_code = process.wait()
-    seconds = time.perf_counter() - start
-    log = (output / "run.log").read_text(errors="replace")
-
+    log, outcome = run_program(command, environment, output, timeout)
     result = {"name": name, "discretisation": key, "kappa": kappa, "kind": kind,
-              "overrides": overrides, "exit_code": exit_code, "timed_out": timed_out,
-              "measured_seconds": seconds, "materials": printed_materials(log)}
-    if timed_out:
-        result["status"] = "hang"
-    elif exit_code == 0:
-        result["status"] = "finished"
-    elif exit_code == 2 and "The simulation stopped:" in log:
-        result["status"] = "stopped"
-    else:
-        result["status"] = "crashed"
-    if result["status"] != "finished":
-        tail = [line for line in log.strip().splitlines() if line.strip()][-10:]
-        result["log_tail"] = [relative(line) for line in tail]
-        stop = re.search(r"The simulation stopped: (.*)", log)
-        result["message"] = relative(stop.group(1)) if stop else relative(tail[-1] if tail else "")
+              "overrides": overrides, **outcome}
     dofs = re.search(r"Degrees of freedom: (\d+)", log)
     cells = re.search(r"Mesh: (\d+) simplex cells", log)
     result["dofs"] = int(dofs.group(1)) if dofs else None
@@ -264,7 +234,8 @@ def run_case(build, output_root, case, timeout, threads):
         result["volume_change"] = mean_volume_change(output)
     (output / "result.json").write_text(json.dumps(result, indent=1))
     f = result["spectrum"]["f_damped_fit_Hz"] if result["spectrum"] else None
-    print(f"    {result['status']} (exit {exit_code}) in {seconds:.1f} s, "
+    print(f"    {result['status']} (exit {result['exit_code']}) "
+          f"in {result['measured_seconds']:.1f} s, "
           f"{result['dofs']} dofs, f fit = {f}", flush=True)
     return result
 

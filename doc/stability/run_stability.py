@@ -305,6 +305,45 @@ def relative(text):
 
 # @sect{Running a case}
 
+def run_program(command, environment, output, timeout):
+    """Runs soft-robot with its output in output/run.log, killing it after
+    `timeout` seconds. Returns the log and what the studies record of the
+    run: exit code, timeout, wall time, the printed material data, and its
+    status (finished, stopped cleanly with exit code 2, hang, or crashed)
+    with the last lines of the log and the stop message if it did not
+    finish."""
+    start = time.perf_counter()
+    with open(output / "run.log", "w") as log:
+        process = subprocess.Popen(command, cwd=REPOSITORY, env=environment,
+                                   stdout=log, stderr=subprocess.STDOUT,
+                                   start_new_session=True)
+        timed_out = False
+        try:
+            exit_code = process.wait(timeout=timeout)
+        except subprocess.TimeoutExpired:
+            timed_out = True
+            os.killpg(process.pid, signal.SIGKILL)
+            exit_code = process.wait()
+    seconds = time.perf_counter() - start
+    log = (output / "run.log").read_text(errors="replace")
+    result = {"exit_code": exit_code, "timed_out": timed_out,
+              "measured_seconds": seconds, "materials": printed_materials(log)}
+    if timed_out:
+        result["status"] = "hang"
+    elif exit_code == 0:
+        result["status"] = "finished"
+    elif exit_code == 2 and "The simulation stopped:" in log:
+        result["status"] = "stopped"
+    else:
+        result["status"] = "crashed"
+    if result["status"] != "finished":
+        tail = [line for line in log.strip().splitlines() if line.strip()][-10:]
+        result["log_tail"] = [relative(line) for line in tail]
+        stop = re.search(r"The simulation stopped: (.*)", log)
+        result["message"] = relative(stop.group(1)) if stop else relative(tail[-1] if tail else "")
+    return log, result
+
+
 def run_case(build, output_root, case, timeout, keep_vtu):
     name, group, scene, overrides, description, vtu, spectral = case
     output = output_root / directory_name(name)
@@ -326,37 +365,9 @@ def run_case(build, output_root, case, timeout, keep_vtu):
     environment = dict(os.environ, OMP_NUM_THREADS="1")
     print(f"[{name}] {description}", flush=True)
 
-    start = time.perf_counter()
-    with open(output / "run.log", "w") as log:
-        process = subprocess.Popen(command, cwd=REPOSITORY, env=environment,
-                                   stdout=log, stderr=subprocess.STDOUT,
-                                   start_new_session=True)
-        timed_out = False
-        try:
-            exit_code = process.wait(timeout=timeout)
-        except subprocess.TimeoutExpired:
-            timed_out = True
-            os.killpg(process.pid, signal.SIGKILL)
-            exit_code = process.wait()
-    seconds = time.perf_counter() - start
-    log = (output / "run.log").read_text(errors="replace")
-
+    log, outcome = run_program(command, environment, output, timeout)
     result = {"name": name, "group": group, "scene": scene, "description": description,
-              "overrides": overrides, "exit_code": exit_code, "timed_out": timed_out,
-              "measured_seconds": seconds, "materials": printed_materials(log)}
-    if timed_out:
-        result["status"] = "hang"
-    elif exit_code == 0:
-        result["status"] = "finished"
-    elif exit_code == 2 and "The simulation stopped:" in log:
-        result["status"] = "stopped"
-    else:
-        result["status"] = "crashed"
-    if result["status"] != "finished":
-        tail = [line for line in log.strip().splitlines() if line.strip()][-10:]
-        result["log_tail"] = [relative(line) for line in tail]
-        stop = re.search(r"The simulation stopped: (.*)", log)
-        result["message"] = relative(stop.group(1)) if stop else relative(tail[-1] if tail else "")
+              "overrides": overrides, **outcome}
 
     events, reasons = cutbacks_from_log(log)
     result["cutbacks_in_log"] = len(events)
@@ -374,7 +385,8 @@ def run_case(build, output_root, case, timeout, keep_vtu):
     if vtu is not None:
         result["vtu"] = analyse_vtu_series(output, keep_vtu)
     (output / "result.json").write_text(json.dumps(result, indent=1))
-    print(f"    {result['status']} (exit {exit_code}) in {seconds:.1f} s, "
+    print(f"    {result['status']} (exit {result['exit_code']}) "
+          f"in {result['measured_seconds']:.1f} s, "
           f"{len(events)} cutback(s)", flush=True)
     return result
 
