@@ -8,16 +8,23 @@ its figures in doc/figures/locking/.
     /usr/bin/python3 doc/locking/run_locking.py build-release
         [--cases a,b] [--timeout 900] [--threads 1] [--report-only]
 
-The program has no mixed (u-p) or F-bar formulation. What it offers against
-locking is the polynomial degree: quadratic tetrahedra (`Finite
-element/Polynomial degree = 2`) lock much less than linear ones. The study
-measures both.
+What the program offers against locking: quadratic tetrahedra (`Finite
+element/Polynomial degree = 2`), which lock much less than linear ones, and
+the mean-dilatation formulation (`Finite element/Volumetric formulation =
+mean dilatation`: the three-field formulation with pressure and dilatation
+constant per cell, condensed cell by cell), which with quadratic
+tetrahedra is the stable P2-P0 pair. With linear tetrahedra the
+mean-dilatation formulation is identical to the displacement one (their
+volume ratio is constant per cell), so it is run with P2 only. The study
+measures all three.
 
 Every case is parameters/bellows/vertical_ds20_3d.prm (experiment 1,
 Dragon Skin 20, quarter model) with `--set` overrides: the silicone's
 `Bulk-to-shear ratio` in its library entry (kappa/mu), the mesh (coarse,
-medium, fine, or the coarse mesh refined once) and the polynomial degree
-(1 on every mesh, 2 on the coarse and the medium one).
+medium, fine, or the coarse mesh refined once), the polynomial degree
+(1 on every mesh, 2 on the coarse and the medium one) and the volumetric
+formulation (displacement everywhere; mean dilatation with degree 2 on
+the coarse and the medium mesh).
 All frequency cases run the same shortened record, `Time integration/End
 time = 2.5` (about 9 periods), without VTU output; the baseline (P1 coarse,
 kappa/mu = 100) also runs the scene's full 5.25 s once, to show what the
@@ -105,13 +112,20 @@ DISCRETISATIONS = [
     ("p2_coarse", "P2 coarse", ["Finite element/Polynomial degree=2"], "*"),
     ("p2_medium", "P2 medium", [f"Geometry/Mesh file={MESHES}_medium.msh",
                                 "Finite element/Polynomial degree=2"], "*"),
+    ("p2md_coarse", "P2 mean dilatation coarse",
+     ["Finite element/Polynomial degree=2",
+      "Finite element/Volumetric formulation=mean dilatation"], "D"),
+    ("p2md_medium", "P2 mean dilatation medium",
+     [f"Geometry/Mesh file={MESHES}_medium.msh", "Finite element/Polynomial degree=2",
+      "Finite element/Volumetric formulation=mean dilatation"], "D"),
 ]
 LABEL = {d[0]: d[1] for d in DISCRETISATIONS}
 MARKER = {d[0]: d[3] for d in DISCRETISATIONS}
 # The result a table's "change" column compares with: the first of these
-# that finished (quadratic elements lock least and are the most accurate per
-# unknown), else the finished linear case with the most dofs.
-REFERENCES = ["p2_medium", "p2_coarse"]
+# that finished (quadratic elements in the mean-dilatation formulation do not
+# lock, and quadratic elements are the most accurate per unknown), else the
+# finished linear case with the most dofs.
+REFERENCES = ["p2md_medium", "p2md_coarse", "p2_medium", "p2_coarse"]
 
 
 def kappa_tag(kappa):
@@ -139,8 +153,8 @@ CASES.append(("p1_coarse_k1e2_full", "p1_coarse", 100.,
 CASE_NAMES = [case[0] for case in CASES]
 # The order of the runs: the cheap cases first.
 RUN_ORDER = (["p1_coarse_k1e2_full"]
-             + [n for d in ("p1_coarse", "p1_medium", "p1_fine", "p2_coarse", "p1_refined",
-                            "p2_medium")
+             + [n for d in ("p1_coarse", "p1_medium", "p1_fine", "p2_coarse",
+                            "p2md_coarse", "p1_refined", "p2_medium", "p2md_medium")
                 for n in CASE_NAMES if n.startswith(d + "_k") and not n.endswith("_full")])
 assert sorted(RUN_ORDER) == sorted(CASE_NAMES)
 
@@ -309,7 +323,7 @@ def reference_of(by_key):
 # One colour per kappa/mu, one per discretisation.
 KAPPA_COLORS = ["tab:blue", "tab:green", "tab:red"]
 DISCRETISATION_COLORS = ["tab:blue", "tab:orange", "tab:green", "tab:purple", "tab:red",
-                         "tab:brown"]
+                         "tab:brown", "tab:pink", "tab:gray"]
 
 
 def plot_frequency_against_dofs(groups, path):
@@ -335,6 +349,11 @@ def plot_frequency_against_dofs(groups, path):
             if p2:
                 ax.plot(*zip(*p2), "-*", color=color, ms=13, lw=1.6,
                         label=f"P2 coarse, medium; κ/μ = {kappa_text(kappa)}")
+            p2md = series(("p2md_coarse", "p2md_medium"))
+            if p2md:
+                ax.plot(*zip(*p2md), ":D", color=color, ms=8, lw=1.6, mfc="none",
+                        label=f"P2 mean dilatation coarse, medium; κ/μ = "
+                              f"{kappa_text(kappa)}")
     for ax, label in zip(axes, ("degrees of freedom",
                                 "cost: ms per time step (1 process; see the tables)")):
         ax.set_xscale("log")
@@ -347,7 +366,9 @@ def plot_frequency_against_dofs(groups, path):
                     "and against the cost of a step (right), one colour per κ/μ.\n"
                     "Circles: linear tetrahedra on the coarse, medium and fine meshes; open "
                     "squares (dashed from the coarse mesh): linear, coarse mesh refined "
-                    "once;\nstars: quadratic on the coarse and the medium mesh", fontsize=9)
+                    "once;\nstars: quadratic on the coarse and the medium mesh; open "
+                    "diamonds (dotted): the same in the mean-dilatation formulation",
+                    fontsize=9)
     figure.tight_layout(rect=(0, 0.13, 1, 0.98))
     figure.savefig(path, dpi=110)
     plt.close(figure)
@@ -359,7 +380,8 @@ def plot_frequency_against_kappa(groups, path):
         series = [(kappa, by_key[key][1]["f_fit"]) for kappa, by_key in groups
                   if key in by_key and by_key[key][1]["f_fit"]]
         if series:
-            ax.plot(*zip(*series), ("--" if key.startswith("p2") else "-") + marker,
+            ax.plot(*zip(*series), (":" if key.startswith("p2md") else "--"
+                                     if key.startswith("p2") else "-") + marker,
                     color=DISCRETISATION_COLORS[j % len(DISCRETISATION_COLORS)],
                     ms=11 if marker == "*" else 6, label=label)
     ax.set_xscale("log")
@@ -424,8 +446,10 @@ def write_report(path, results, session):
         "is Dragon Skin 20), the mesh (`Geometry/Mesh file`: the coarse, medium or fine "
         "quarter mesh, or the coarse one with `Geometry/Global refinements=1`) and "
         "`Finite element/Polynomial degree` (1: linear tetrahedra, P1; 2: quadratic, "
-        "P2). The program has no mixed or F-bar formulation; the quadratic elements "
-        "are the option it has against locking.\n")
+        "P2) and `Finite element/Volumetric formulation` (displacement, or mean "
+        "dilatation: pressure and dilatation constant per cell and condensed, with "
+        "P2 the stable P2–P0 pair; with P1 it would be the displacement formulation "
+        "itself, so it runs with P2 only).\n")
     cycles = [m[r["name"]]["cycles"] for r in record if m[r["name"]]["cycles"]]
     periods = f", {min(cycles):.1f} to {max(cycles):.1f} periods" if cycles else ""
     lines.append(
@@ -437,8 +461,8 @@ def write_report(path, results, session):
         "and damping ratio `xi_fit` of the modal fit (a damped sinusoid fitted to the "
         "record). \"change\" is the relative difference of the modal-fit frequency "
         "from the reference of the same κ/μ (marked **ref**): the quadratic elements "
-        "on the finest mesh they ran on (medium, else coarse), the discretisation "
-        "that locks least. Newton/step "
+        "in the mean-dilatation formulation on the finest mesh they ran on (medium, "
+        "else coarse), the discretisation that does not lock. Newton/step "
         "counts all Newton iterations of the run over its steps; ms/step is the "
         "time loop (the wall time less mesh, set-up and the initial static "
         "equilibrium) per step; wall s is the whole run as the program measures it "

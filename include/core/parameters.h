@@ -68,6 +68,8 @@ namespace SoftRobot
     {
       unsigned int degree;
       unsigned int quadrature_points;
+      // "displacement" or "mean dilatation" (see the declaration).
+      std::string volumetric_formulation;
 
       static void
       declare_parameters(ParameterHandler &prm);

@@ -157,6 +157,13 @@ namespace SoftRobot
     // stiffness and mass matrix (for eigenfrequency checks).
     const TrilinosWrappers::SparseMatrix &
     tangent_stiffness_matrix();
+    // The same at any displacement u, and the strain energy and internal
+    // force vector there: for tests of the linearisation.
+    const TrilinosWrappers::SparseMatrix &
+    tangent_stiffness_matrix(const TrilinosWrappers::MPI::Vector &u);
+    double
+    internal_force(const TrilinosWrappers::MPI::Vector &u,
+                   TrilinosWrappers::MPI::Vector       &force);
     const TrilinosWrappers::SparseMatrix &
     mass_matrix() const
     {

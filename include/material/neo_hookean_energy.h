@@ -162,6 +162,49 @@ namespace SoftRobot
     double
     volume_ratio(const Tensor<2, dim> &F) const;
 
+    // @sect4{The volumetric part on its own: the mean-dilatation formulation}
+    //
+    // In 3D the energy splits into an isochoric and a volumetric part,
+    // $\Psi = \Psi_{\mathrm{iso}}(\mathbf E) + U(J)$ with $U(J) =
+    // \frac{\kappa}{4}(J^2 - 1 - 2\ln J)$. The mean-dilatation
+    // formulation of the solver (`Finite element/Volumetric formulation`)
+    // evaluates $U$ at the mean volume ratio $\Theta$ of a cell instead of
+    // at $J$, and needs the two parts separately. In the reduced models
+    // (dim = 1, 2) there is no volumetric part: the isochoric energy is the
+    // whole energy there.
+    template <typename Number>
+    Number
+    isochoric_energy(const SymmetricTensor<2, dim, Number> &E) const;
+
+    // $U$, $U'$ and $U''$ at $\Theta = 1 + t$, given $t$ so that states
+    // close to the reference keep their digits: $U = \frac{\kappa}{4}\,k(t(2
+    // + t))$, $U' = \frac{\kappa}{2}\,t(2+t)/(1+t)$, $U'' =
+    // \frac{\kappa}{2}(1 + (1+t)^{-2})$.
+    double
+    volumetric_energy(const double theta_minus_one) const;
+    double
+    volumetric_pressure(const double theta_minus_one) const;
+    double
+    volumetric_stiffness(const double theta_minus_one) const;
+
+    // $J - 1 = d/(1 + \sqrt{1 + d})$ from the strain (no cancellation), and
+    // $\partial J/\partial\mathbf E = J\,\mathbf C^{-1}$.
+    static double
+    volume_change(const SymmetricTensor<2, dim> &E);
+    static SymmetricTensor<2, dim>
+    volume_ratio_derivative(const SymmetricTensor<2, dim> &E);
+
+    // The isochoric energy plus a constant pressure $p$ times $J - 1$,
+    // differentiated: $\mathbf S = \partial\Psi_{\mathrm{iso}}/\partial
+    // \mathbf E + p\,J\mathbf C^{-1}$ and its tangent (with
+    // `with_tangent`). The energy of the response is $\Psi_{\mathrm{iso}}$
+    // alone; the cell adds the volumetric energy of its mean dilatation.
+    void
+    evaluate_with_pressure(const Tensor<2, dim>  &displacement_gradient,
+                           const double           pressure,
+                           const bool             with_tangent,
+                           MaterialResponse<dim> &response) const;
+
     double
     shear_modulus() const
     {
@@ -291,28 +334,53 @@ namespace SoftRobot
 
 
 
+  namespace internal
+  {
+    // The invariants of a 3D strain and $d = \det\mathbf C - 1$.
+    template <typename Number>
+    struct StrainInvariants
+    {
+      Number I1, I2, I3, d;
+    };
+
+    template <typename Number>
+    StrainInvariants<Number>
+    strain_invariants(const SymmetricTensor<2, 3, Number> &E)
+    {
+      StrainInvariants<Number> invariants;
+      invariants.I1 = trace(E);
+      // the sum of the principal minors, written by components because
+      // the static Sacado numbers have no tensor contraction in deal.II
+      invariants.I2 = E[0][0] * E[1][1] + E[1][1] * E[2][2] +
+                      E[2][2] * E[0][0] - E[0][1] * E[0][1] -
+                      E[1][2] * E[1][2] - E[0][2] * E[0][2];
+      invariants.I3 = determinant(E);
+      invariants.d =
+        2. * invariants.I1 + 4. * invariants.I2 + 8. * invariants.I3;
+      return invariants;
+    }
+
+    // The isochoric neo-Hookean energy per unit shear modulus.
+    template <typename Number>
+    Number
+    isochoric_energy_3d(const StrainInvariants<Number> &e)
+    {
+      return 0.5 * (cube_root_remainder(e.d) - 4. * e.I2 - 8. * e.I3 +
+                    2. * e.I1 * inverse_cube_root_minus_one(e.d));
+    }
+  } // namespace internal
+
+
+
   template <int dim>
   template <typename Number>
   Number
-  NeoHookeanEnergy<dim>::energy(const SymmetricTensor<2, dim, Number> &E) const
+  NeoHookeanEnergy<dim>::isochoric_energy(
+    const SymmetricTensor<2, dim, Number> &E) const
   {
     using std::sqrt;
     if constexpr (dim == 3)
-      {
-        const Number I1 = trace(E);
-        // the sum of the principal minors, written by components because
-        // the static Sacado numbers have no tensor contraction in deal.II
-        const Number I2 = E[0][0] * E[1][1] + E[1][1] * E[2][2] +
-                          E[2][2] * E[0][0] - E[0][1] * E[0][1] -
-                          E[1][2] * E[1][2] - E[0][2] * E[0][2];
-        const Number I3 = determinant(E);
-        const Number d  = 2. * I1 + 4. * I2 + 8. * I3;
-        const Number g  = internal::inverse_cube_root_minus_one(d);
-        return 0.5 * mu *
-                 (internal::cube_root_remainder(d) - 4. * I2 - 8. * I3 +
-                  2. * I1 * g) +
-               0.25 * kappa * internal::d_minus_log1p(d);
-      }
+      return mu * internal::isochoric_energy_3d(internal::strain_invariants(E));
     else if constexpr (dim == 2)
       {
         const Number trE  = trace(E);
@@ -326,6 +394,24 @@ namespace SoftRobot
         const Number lambda_minus = 2. * E[0][0] / (lambda + 1.);
         return 0.5 * mu * lambda_minus * lambda_minus * (lambda + 2.) / lambda;
       }
+  }
+
+
+
+  template <int dim>
+  template <typename Number>
+  Number
+  NeoHookeanEnergy<dim>::energy(const SymmetricTensor<2, dim, Number> &E) const
+  {
+    if constexpr (dim == 3)
+      {
+        const internal::StrainInvariants<Number> invariants =
+          internal::strain_invariants(E);
+        return mu * internal::isochoric_energy_3d(invariants) +
+               0.25 * kappa * internal::d_minus_log1p(invariants.d);
+      }
+    else
+      return isochoric_energy(E);
   }
 } // namespace SoftRobot
 

@@ -143,6 +143,20 @@ namespace SoftRobot
                         "for a linear problem: p + 1 on hypercubes, p on "
                         "simplices (one point for linear tetrahedra). The "
                         "mass matrix always uses p + 1.");
+      prm.declare_entry(
+        "Volumetric formulation",
+        "displacement",
+        Patterns::Selection("displacement|mean dilatation"),
+        "How the volumetric energy U(J) of the 3D material enters. "
+        "'displacement': at every quadrature point, the pure displacement "
+        "formulation; it locks when the bulk modulus is large against the "
+        "shear modulus, most of all with linear tetrahedra. 'mean "
+        "dilatation': the three-field formulation with pressure and "
+        "dilatation constant in each cell, condensed cell by cell, so that "
+        "U acts on the cell's mean volume ratio; with quadratic elements it "
+        "does not lock, with linear tetrahedra it is the same as "
+        "'displacement'. The reduced 1D and 2D models are incompressible by "
+        "construction and allow 'displacement' only.");
       prm.leave_subsection();
     }
 
@@ -152,6 +166,7 @@ namespace SoftRobot
       prm.enter_subsection("Finite element");
       degree            = prm.get_integer("Polynomial degree");
       quadrature_points = prm.get_integer("Quadrature points");
+      volumetric_formulation = prm.get("Volumetric formulation");
       prm.leave_subsection();
     }
 
@@ -876,6 +891,13 @@ namespace SoftRobot
                     ExcMessage(where + "Material " + std::to_string(id) +
                                "/Section must be 1 in 3D (it is the area or "
                                "thickness of the reduced 1D and 2D models)."));
+      AssertThrow(dimension == 3 || volumetric_formulation == "displacement",
+                  ExcMessage(where +
+                             "Finite element/Volumetric formulation must be "
+                             "'displacement' in " +
+                             std::to_string(dimension) +
+                             "D ('mean dilatation' is for the compressible "
+                             "3D material only)."));
       for (const auto &[id, letters] : fixed_components)
         {
           AssertThrow(!letters.empty() &&

@@ -64,6 +64,8 @@ namespace SoftRobot
     {
       MaterialResponse<dim>                response;
       std::vector<SymmetricTensor<2, dim>> delta_E;
+      std::vector<Tensor<2, dim>>          H;
+      Vector<double>                       volume_gradient;
     };
 
     // What one cell contributes: its matrices, force, dof indices, and its
@@ -103,6 +105,9 @@ namespace SoftRobot
     const std::vector<unsigned int> &component = geometry.components;
 
     const bool with_damping = with_matrix && has_damping && with_damping_matrix;
+    const bool mean_dilatation =
+      (dim == 3) &&
+      (parameters.volumetric_formulation == "mean dilatation");
     if (with_matrix)
       system_matrix = 0.;
     if (with_damping)
@@ -181,6 +186,48 @@ namespace SoftRobot
           local.damping = 0.;
         }
       local.force = 0.;
+
+      // The displacement gradients at the quadrature points.
+      std::vector<Tensor<2, dim>> &H = scratch.H;
+      H.assign(n_q_points, Tensor<2, dim>());
+      for (unsigned int q = 0; q < n_q_points; ++q)
+        {
+          const Tensor<1, dim> *grad_phi =
+            &geometry.shape_gradients[(cell * n_q_points + q) * dofs_per_cell];
+          for (unsigned int i = 0; i < dofs_per_cell; ++i)
+            H[q][component[i]] += cell_u[i] * grad_phi[i];
+        }
+
+      // The mean-dilatation formulation (see the class documentation): the
+      // cell's mean volume ratio $\Theta = 1 + t$, its volumetric energy
+      // $V_e\,U(\Theta)$, the pressure $p = U'(\Theta)$ every point of the
+      // cell feels, and $U''(\Theta)/V_e$ for the tangent.
+      double pressure = 0., volumetric_stiffness = 0., cell_volume = 0.;
+      if (mean_dilatation)
+        {
+          double volume_change = 0.;
+          for (unsigned int q = 0; q < n_q_points; ++q)
+            {
+              const double JxW = geometry.JxW[cell * n_q_points + q];
+              cell_volume += JxW;
+              volume_change += NeoHookeanEnergy<dim>::volume_change(
+                                 NeoHookeanEnergy<dim>::green_lagrange_strain(
+                                   H[q])) *
+                               JxW;
+            }
+          const double t = volume_change / cell_volume;
+          if (!(t > -1.))
+            local.inverted = true;
+          else
+            {
+              pressure             = material.volumetric_pressure(t);
+              volumetric_stiffness = material.volumetric_stiffness(t);
+              local.strain_energy += material.volumetric_energy(t) * cell_volume;
+            }
+          if (with_matrix)
+            scratch.volume_gradient.reinit(dofs_per_cell);
+        }
+
       for (unsigned int q = 0; q < n_q_points; ++q)
         {
           const unsigned int    point = cell * n_q_points + q;
@@ -188,24 +235,37 @@ namespace SoftRobot
             &geometry.shape_gradients[point * dofs_per_cell];
           const double JxW = geometry.JxW[point];
 
-          Tensor<2, dim> H;
-          for (unsigned int i = 0; i < dofs_per_cell; ++i)
-            H[component[i]] += cell_u[i] * grad_phi[i];
-          Tensor<2, dim> F = H;
+          Tensor<2, dim> F = H[q];
           for (unsigned int d = 0; d < dim; ++d)
             F[d][d] += 1.;
           const double J     = determinant(F);
           local.min_jacobian = std::min(local.min_jacobian, J);
-          if (!(J > 0.))
+          if (!(J > 0.) || local.inverted)
             {
               local.inverted = true;
               continue;
             }
-          if (with_matrix)
-            material.evaluate(H, response);
+          if (mean_dilatation)
+            material.evaluate_with_pressure(H[q],
+                                            pressure,
+                                            with_matrix,
+                                            response);
+          else if (with_matrix)
+            material.evaluate(H[q], response);
           else
-            material.evaluate_stress(H, response);
+            material.evaluate_stress(H[q], response);
           local.strain_energy += response.energy * JxW;
+
+          // The derivative of the cell's volume, $\partial(V_e\Theta)/
+          // \partial u_i = \int (\mathrm{cof}\,\mathbf F)_{c_i}\cdot
+          // \nabla_0\varphi_i\,dV$, for the rank-one part of the tangent.
+          if (mean_dilatation && with_matrix)
+            {
+              const Tensor<2, dim> cofactor = J * transpose(invert(F));
+              for (unsigned int i = 0; i < dofs_per_cell; ++i)
+                scratch.volume_gradient(i) +=
+                  (cofactor[component[i]] * grad_phi[i]) * JxW;
+            }
 
           const SymmetricTensor<2, dim> &S = response.second_piola;
           for (unsigned int i = 0; i < dofs_per_cell; ++i)
@@ -245,6 +305,23 @@ namespace SoftRobot
                     local.damping(i, j) += zeta * (D_dE_i * delta_E[j]) * JxW;
                 }
             }
+        }
+      // The condensed pressure and dilatation add $U''(\Theta)/V_e\;
+      // \mathbf g\mathbf g^T$ with the volume derivative $\mathbf g$ above;
+      // it is positive semi-definite and belongs to the material part, so
+      // the damping matrix gets it too.
+      if (mean_dilatation && with_matrix && !local.inverted)
+        {
+          const Vector<double> &g      = scratch.volume_gradient;
+          const double          factor = volumetric_stiffness / cell_volume;
+          const bool            damped = with_damping && zeta > 0.;
+          for (unsigned int i = 0; i < dofs_per_cell; ++i)
+            for (unsigned int j = 0; j <= i; ++j)
+              {
+                local.matrix(i, j) += factor * g(i) * g(j);
+                if (damped)
+                  local.damping(i, j) += zeta * factor * g(i) * g(j);
+              }
         }
       if (with_matrix)
         for (unsigned int i = 0; i < dofs_per_cell; ++i)

@@ -180,7 +180,13 @@ namespace SoftRobot
     std::vector<Vector<float>> stress(dim * (dim + 1) / 2,
                                       Vector<float>(n_cells));
 
-    FEValues<dim> fe_values(*mapping, *fe, *cell_quadrature, update_gradients);
+    FEValues<dim> fe_values(*mapping,
+                            *fe,
+                            *cell_quadrature,
+                            update_gradients | update_JxW_values);
+    const bool    mean_dilatation =
+      (dim == 3) &&
+      (parameters.volumetric_formulation == "mean dilatation");
     const FEValuesExtractors::Vector displacements(0);
     std::vector<Tensor<2, dim>>      grad_u(cell_quadrature->size());
     MaterialResponse<dim>            response;
@@ -190,14 +196,33 @@ namespace SoftRobot
           fe_values.reinit(cell);
           fe_values[displacements].get_function_gradients(u, grad_u);
           const NeoHookeanEnergy<dim> &law = materials.at(cell->material_id());
-          SymmetricTensor<2, dim>      mean_sigma;
-          double                       mean_J = 0.;
+          // With the mean-dilatation formulation, the pressure is that of
+          // the cell's mean volume ratio (as in the assembly).
+          double pressure = 0.;
+          if (mean_dilatation)
+            {
+              double volume = 0., volume_change = 0.;
+              for (const unsigned int q : fe_values.quadrature_point_indices())
+                {
+                  volume += fe_values.JxW(q);
+                  volume_change +=
+                    NeoHookeanEnergy<dim>::volume_change(
+                      NeoHookeanEnergy<dim>::green_lagrange_strain(grad_u[q])) *
+                    fe_values.JxW(q);
+                }
+              pressure = law.volumetric_pressure(volume_change / volume);
+            }
+          SymmetricTensor<2, dim> mean_sigma;
+          double                  mean_J = 0.;
           for (const auto &G : grad_u)
             {
               Tensor<2, dim> F = G;
               for (unsigned int d = 0; d < dim; ++d)
                 F[d][d] += 1.;
-              law.evaluate_stress(G, response);
+              if (mean_dilatation)
+                law.evaluate_with_pressure(G, pressure, false, response);
+              else
+                law.evaluate_stress(G, response);
               mean_sigma += law.cauchy_stress(F, response.second_piola);
               mean_J += determinant(F);
             }

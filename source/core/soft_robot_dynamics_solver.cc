@@ -770,6 +770,31 @@ namespace SoftRobot
 
 
 
+  template <int dim>
+  const TrilinosWrappers::SparseMatrix &
+  SoftRobotDynamics<dim>::tangent_stiffness_matrix(
+    const TrilinosWrappers::MPI::Vector &u)
+  {
+    TrilinosWrappers::MPI::Vector force(locally_owned_dofs, mpi_communicator);
+    assemble_internal_force(u, true, force, false);
+    // (The matrix is not that of the current state, and the damping matrix
+    // of the state is left as it is.)
+    system_matrix_is_state_stiffness = false;
+    return system_matrix;
+  }
+
+
+
+  template <int dim>
+  double
+  SoftRobotDynamics<dim>::internal_force(const TrilinosWrappers::MPI::Vector &u,
+                                         TrilinosWrappers::MPI::Vector &force)
+  {
+    return assemble_internal_force(u, false, force).strain_energy;
+  }
+
+
+
 #define SOFT_ROBOT_INSTANTIATE(dim)                                           \
   template typename SoftRobotDynamics<dim>::AssemblyResult SoftRobotDynamics< \
     dim>::evaluate_residual(const TrilinosWrappers::MPI::Vector &,            \
@@ -801,7 +826,12 @@ namespace SoftRobot
     const AssemblyResult &);                                                  \
   template bool SoftRobotDynamics<dim>::advance_one_step();                   \
   template const TrilinosWrappers::SparseMatrix &                             \
-  SoftRobotDynamics<dim>::tangent_stiffness_matrix();
+  SoftRobotDynamics<dim>::tangent_stiffness_matrix();                         \
+  template const TrilinosWrappers::SparseMatrix &                             \
+  SoftRobotDynamics<dim>::tangent_stiffness_matrix(                           \
+    const TrilinosWrappers::MPI::Vector &);                                   \
+  template double SoftRobotDynamics<dim>::internal_force(                     \
+    const TrilinosWrappers::MPI::Vector &, TrilinosWrappers::MPI::Vector &);
 
   SOFT_ROBOT_INSTANTIATE(1)
   SOFT_ROBOT_INSTANTIATE(2)

@@ -81,6 +81,64 @@ namespace SoftRobot
         }
       return E_ad;
     }
+
+
+
+    // The energy `psi` of the strain differentiated twice: value, $\mathbf
+    // S$ and $\mathcal C$ into the response.
+    template <int dim, typename EnergyFunction>
+    void
+    differentiate_twice(const SymmetricTensor<2, dim> &E,
+                        const EnergyFunction          &psi,
+                        MaterialResponse<dim>         &response)
+    {
+      constexpr unsigned int n =
+        SymmetricTensor<2, dim>::n_independent_components;
+      using Inner    = Sacado::CacheFad::SFad<double, n>;
+      using ADNumber = Sacado::CacheFad::SFad<Inner, n>;
+
+      const ADNumber value = psi(independent_strain<dim, ADNumber>(
+        E, [](const unsigned int a, const double component) {
+          return ADNumber(n, a, Inner(n, a, component));
+        }));
+      response.energy = value.val().val();
+      for (unsigned int a = 0; a < n; ++a)
+        {
+          const TableIndices<2> ij =
+            SymmetricTensor<2, dim>::unrolled_to_component_indices(a);
+          const double w_a          = symmetric_weight<dim>(a);
+          response.second_piola[ij] = w_a * value.dx(a).val();
+          for (unsigned int b = 0; b < n; ++b)
+            {
+              const TableIndices<2> kl =
+                SymmetricTensor<2, dim>::unrolled_to_component_indices(b);
+              response.material_tangent[ij[0]][ij[1]][kl[0]][kl[1]] =
+                w_a * symmetric_weight<dim>(b) * value.dx(a).dx(b);
+            }
+        }
+    }
+
+    // The same with first derivatives only: value and $\mathbf S$.
+    template <int dim, typename EnergyFunction>
+    void
+    differentiate_once(const SymmetricTensor<2, dim> &E,
+                       const EnergyFunction          &psi,
+                       MaterialResponse<dim>         &response)
+    {
+      constexpr unsigned int n =
+        SymmetricTensor<2, dim>::n_independent_components;
+      using ADNumber = Sacado::CacheFad::SFad<double, n>;
+
+      const ADNumber value = psi(independent_strain<dim, ADNumber>(
+        E, [](const unsigned int a, const double component) {
+          return ADNumber(n, a, component);
+        }));
+      response.energy = value.val();
+      for (unsigned int a = 0; a < n; ++a)
+        response.second_piola[SymmetricTensor<2, dim>::
+                                unrolled_to_component_indices(a)] =
+          symmetric_weight<dim>(a) * value.dx(a);
+    }
   } // namespace
 
 
@@ -90,31 +148,10 @@ namespace SoftRobot
   NeoHookeanEnergy<dim>::evaluate(const Tensor<2, dim>  &displacement_gradient,
                                   MaterialResponse<dim> &response) const
   {
-    constexpr unsigned int n = SymmetricTensor<2, dim>::n_independent_components;
-    using Inner    = Sacado::CacheFad::SFad<double, n>;
-    using ADNumber = Sacado::CacheFad::SFad<Inner, n>;
-
-    const SymmetricTensor<2, dim> E =
-      green_lagrange_strain(displacement_gradient);
-    const ADNumber psi = energy(independent_strain<dim, ADNumber>(
-      E, [](const unsigned int a, const double value) {
-        return ADNumber(n, a, Inner(n, a, value));
-      }));
-    response.energy    = psi.val().val();
-    for (unsigned int a = 0; a < n; ++a)
-      {
-        const TableIndices<2> ij =
-          SymmetricTensor<2, dim>::unrolled_to_component_indices(a);
-        const double w_a          = symmetric_weight<dim>(a);
-        response.second_piola[ij] = w_a * psi.dx(a).val();
-        for (unsigned int b = 0; b < n; ++b)
-          {
-            const TableIndices<2> kl =
-              SymmetricTensor<2, dim>::unrolled_to_component_indices(b);
-            response.material_tangent[ij[0]][ij[1]][kl[0]][kl[1]] =
-              w_a * symmetric_weight<dim>(b) * psi.dx(a).dx(b);
-          }
-      }
+    differentiate_twice<dim>(
+      green_lagrange_strain(displacement_gradient),
+      [this](const auto &E) { return energy(E); },
+      response);
   }
 
 
@@ -125,20 +162,109 @@ namespace SoftRobot
     const Tensor<2, dim>  &displacement_gradient,
     MaterialResponse<dim> &response) const
   {
-    constexpr unsigned int n = SymmetricTensor<2, dim>::n_independent_components;
-    using ADNumber           = Sacado::CacheFad::SFad<double, n>;
+    differentiate_once<dim>(
+      green_lagrange_strain(displacement_gradient),
+      [this](const auto &E) { return energy(E); },
+      response);
+  }
 
+
+
+  // @sect4{The pieces of the mean-dilatation formulation}
+  //
+  // The pressure term $p\,(J - 1)$ is differentiated with the isochoric
+  // energy, with $J - 1$ written as $d/(1 + \sqrt{1 + d})$ so that it has
+  // all its digits at small strain. The energy of the response is then
+  // replaced by the isochoric energy alone.
+  template <int dim>
+  void
+  NeoHookeanEnergy<dim>::evaluate_with_pressure(
+    const Tensor<2, dim>  &displacement_gradient,
+    const double           pressure,
+    const bool             with_tangent,
+    MaterialResponse<dim> &response) const
+  {
     const SymmetricTensor<2, dim> E =
       green_lagrange_strain(displacement_gradient);
-    const ADNumber psi = energy(independent_strain<dim, ADNumber>(
-      E, [](const unsigned int a, const double value) {
-        return ADNumber(n, a, value);
-      }));
-    response.energy    = psi.val();
-    for (unsigned int a = 0; a < n; ++a)
-      response.second_piola[SymmetricTensor<2, dim>::
-                              unrolled_to_component_indices(a)] =
-        symmetric_weight<dim>(a) * psi.dx(a);
+    // (Every intermediate is stored as a number of the AD type: a single
+    // expression returned from the lambda would leave Sacado's expression
+    // templates referring to destroyed temporaries.)
+    const auto psi = [this, pressure](const auto &E_ad) {
+      using std::sqrt;
+      using Number = std::decay_t<decltype(E_ad[0][0])>;
+      if constexpr (dim == 3)
+        {
+          const internal::StrainInvariants<Number> invariants =
+            internal::strain_invariants(E_ad);
+          const Number root = sqrt(1. + invariants.d);
+          const Number volume_change = invariants.d / (1. + root);
+          Number result = mu * internal::isochoric_energy_3d(invariants);
+          result += pressure * volume_change;
+          return result;
+        }
+      else
+        return Number(isochoric_energy(E_ad));
+    };
+    if (with_tangent)
+      differentiate_twice<dim>(E, psi, response);
+    else
+      differentiate_once<dim>(E, psi, response);
+    response.energy = isochoric_energy(E);
+  }
+
+
+
+  template <int dim>
+  double
+  NeoHookeanEnergy<dim>::volumetric_energy(const double t) const
+  {
+    return (dim == 3) ? 0.25 * kappa * internal::d_minus_log1p(t * (2. + t)) :
+                        0.;
+  }
+
+
+
+  template <int dim>
+  double
+  NeoHookeanEnergy<dim>::volumetric_pressure(const double t) const
+  {
+    return (dim == 3) ? 0.5 * kappa * t * (2. + t) / (1. + t) : 0.;
+  }
+
+
+
+  template <int dim>
+  double
+  NeoHookeanEnergy<dim>::volumetric_stiffness(const double t) const
+  {
+    return (dim == 3) ? 0.5 * kappa * (1. + 1. / ((1. + t) * (1. + t))) : 0.;
+  }
+
+
+
+  template <int dim>
+  double
+  NeoHookeanEnergy<dim>::volume_change(const SymmetricTensor<2, dim> &E)
+  {
+    if constexpr (dim == 3)
+      {
+        const double d = internal::strain_invariants(E).d;
+        return d / (1. + std::sqrt(1. + d));
+      }
+    else
+      return 0.;
+  }
+
+
+
+  template <int dim>
+  SymmetricTensor<2, dim>
+  NeoHookeanEnergy<dim>::volume_ratio_derivative(
+    const SymmetricTensor<2, dim> &E)
+  {
+    const SymmetricTensor<2, dim> C =
+      unit_symmetric_tensor<dim>() + 2. * E;
+    return std::sqrt(determinant(C)) * invert(C);
   }
 
 
