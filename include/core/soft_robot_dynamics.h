@@ -203,6 +203,19 @@ namespace SoftRobot
     {
       return current.time;
     }
+    // An additional body force $\mathbf b(\mathbf X, t)$ per unit reference
+    // volume (kg mm^-2 s^-2 in the program's units), a Function of the
+    // reference position with dim components whose time is set to the time
+    // of the load. It is added to gravity, scaled like it by the section of
+    // the reduced models, and its work is booked with that of the
+    // tractions. The tests impose manufactured solutions with it; loads that
+    // a parameter file cannot express can use it too. Set it before
+    // initialize_state().
+    void
+    set_body_force(const std::shared_ptr<Function<dim>> &force)
+    {
+      body_force = force;
+    }
     // Initial state, then steps of the nominal size until the end time; the
     // same as run() without any output.
     void
@@ -394,6 +407,7 @@ namespace SoftRobot
 
     HHTStepper                  stepper;
     mutable FunctionParser<dim> traction_function;
+    std::shared_ptr<Function<dim>> body_force;
     FunctionParser<dim>         initial_displacement;
     FunctionParser<dim>         initial_velocity;
     Tensor<1, dim>              gravity;

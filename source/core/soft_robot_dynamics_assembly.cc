@@ -454,8 +454,9 @@ namespace SoftRobot
   //
   // Gravity (assembled once with the mass matrix) plus the nominal
   // tractions $\bar{\mathbf t}(\mathbf X, t)$ on the boundaries the
-  // parameter file names, both scaled by the load factor of the static
-  // solve (one during the time loop).
+  // parameter file names and the body force of set_body_force(), if any,
+  // all scaled by the load factor of the static solve (one during the time
+  // loop).
   template <int dim>
   void
   SoftRobotDynamics<dim>::assemble_external_force(
@@ -514,6 +515,47 @@ namespace SoftRobot
                 }
         traction_force.compress(VectorOperation::add);
         force += traction_force;
+      }
+    if (body_force)
+      {
+        TimerOutput::Scope timer_section(computing_timer,
+                                         "Assemble body force");
+        TrilinosWrappers::MPI::Vector body_force_vector(locally_owned_dofs,
+                                                        mpi_communicator);
+        FEValues<dim>                 fe_values(*mapping,
+                                *fe,
+                                *mass_quadrature,
+                                update_values | update_quadrature_points |
+                                  update_JxW_values);
+        const FEValuesExtractors::Vector     displacements(0);
+        const unsigned int                   dofs_per_cell = fe->n_dofs_per_cell();
+        Vector<double>                       cell_force(dofs_per_cell);
+        std::vector<types::global_dof_index> dof_indices(dofs_per_cell);
+        Vector<double>                       value(dim);
+        body_force->set_time(time);
+        for (const auto &cell : dof_handler.active_cell_iterators())
+          if (cell->is_locally_owned())
+            {
+              fe_values.reinit(cell);
+              cell_force           = 0.;
+              const double section = material_of(cell).section;
+              for (const unsigned int q : fe_values.quadrature_point_indices())
+                {
+                  body_force->vector_value(fe_values.quadrature_point(q), value);
+                  Tensor<1, dim> b;
+                  for (unsigned int d = 0; d < dim; ++d)
+                    b[d] = value[d];
+                  for (const unsigned int i : fe_values.dof_indices())
+                    cell_force(i) += fe_values[displacements].value(i, q) * b *
+                                     fe_values.JxW(q) * section;
+                }
+              cell->get_dof_indices(dof_indices);
+              constraints.distribute_local_to_global(cell_force,
+                                                     dof_indices,
+                                                     body_force_vector);
+            }
+        body_force_vector.compress(VectorOperation::add);
+        force += body_force_vector;
       }
     force *= load_factor;
   }
