@@ -203,6 +203,17 @@ namespace SoftRobot
     {
       return current.time;
     }
+    // The angular momentum about the origin, $\mathbf L = \int\rho_0\,
+    // \mathbf x\times\mathbf v\;dV$ with $\mathbf x = \mathbf X +
+    // \mathbf u$ (times the section in the reduced models), of the current
+    // state, for the finite element fields $\mathbf x$ and $\mathbf v$:
+    // the integral is that of the consistent mass matrix, of which the
+    // cells keep their scalar blocks (without the constraints, which would
+    // drop the fixed nodes' share); it is exact where the mass quadrature
+    // is, on affine cells. In 2D only the z-component is nonzero, in 1D
+    // none.
+    Tensor<1, 3>
+    angular_momentum() const;
     // An additional body force $\mathbf b(\mathbf X, t)$ per unit reference
     // volume (kg mm^-2 s^-2 in the program's units), a Function of the
     // reference position with dim components whose time is set to the time
@@ -408,6 +419,11 @@ namespace SoftRobot
     HHTStepper                  stepper;
     mutable FunctionParser<dim> traction_function;
     std::shared_ptr<Function<dim>> body_force;
+    // Per locally owned cell (in the order of the cell geometry): the
+    // scalar mass matrix of its nodes, [cell][n][k], and the reference
+    // positions of its nodes, [cell][n] (see angular_momentum()).
+    std::vector<double>     cell_nodal_mass;
+    std::vector<Point<dim>> cell_node_positions;
     FunctionParser<dim>         initial_displacement;
     FunctionParser<dim>         initial_velocity;
     Tensor<1, dim>              gravity;

@@ -97,12 +97,70 @@ namespace SoftRobot
 
 
 
+  // @sect4{SoftRobotDynamics::angular_momentum}
+  //
+  // $\mathbf L = \sum_{\text{cells}}\sum_{n,k} m_{nk}\,\mathbf x_n\times
+  // \mathbf v_k$ with the scalar cell mass matrices $m_{nk} = \int\rho_0
+  // \varphi_n\varphi_k\,dV$ and the nodal positions and velocities.
+  template <int dim>
+  Tensor<1, 3>
+  SoftRobotDynamics<dim>::angular_momentum() const
+  {
+    Tensor<1, 3> L;
+    if constexpr (dim > 1)
+      {
+        TrilinosWrappers::MPI::Vector u(locally_owned_dofs,
+                                        locally_relevant_dofs,
+                                        mpi_communicator);
+        TrilinosWrappers::MPI::Vector v(u);
+        u = current.u;
+        v = current.v;
+        const unsigned int nodes_per_cell =
+          fe->base_element(0).n_dofs_per_cell();
+        const CellGeometry &geometry = cell_geometry;
+        std::vector<Tensor<1, dim>> x(nodes_per_cell), velocity(nodes_per_cell);
+        for (unsigned int cell = 0; cell < geometry.n_cells; ++cell)
+          {
+            const types::global_dof_index *dofs =
+              &geometry.dof_indices[cell * geometry.dofs_per_cell];
+            for (unsigned int n = 0; n < nodes_per_cell; ++n)
+              for (unsigned int c = 0; c < dim; ++c)
+                {
+                  const types::global_dof_index dof =
+                    dofs[fe->component_to_system_index(c, n)];
+                  x[n][c] = cell_node_positions[cell * nodes_per_cell + n][c] +
+                            u(dof);
+                  velocity[n][c] = v(dof);
+                }
+            const double *m =
+              &cell_nodal_mass[cell * nodes_per_cell * nodes_per_cell];
+            for (unsigned int n = 0; n < nodes_per_cell; ++n)
+              {
+                Tensor<1, dim> p;
+                for (unsigned int k = 0; k < nodes_per_cell; ++k)
+                  p += m[n * nodes_per_cell + k] * velocity[k];
+                if constexpr (dim == 3)
+                  L += cross_product_3d(x[n], p);
+                else
+                  L[2] += x[n][0] * p[1] - x[n][1] * p[0];
+              }
+          }
+        for (unsigned int d = 0; d < 3; ++d)
+          L[d] = Utilities::MPI::sum(L[d], mpi_communicator);
+      }
+    return L;
+  }
+
+
+
   // @sect4{SoftRobotDynamics::open_trajectory_file}
   //
   // The columns: time, time step, tip displacement and velocity (one
   // component per dimension; x is the actuator's axis), the energies of
   // EnergyAccount and their balance, and the Newton iterations of the
-  // step. Lines starting with '#' are comments.
+  // step, and the angular momentum about the origin (its three components
+  // in 3D, the z-component in 2D, none in 1D). Lines starting with '#' are
+  // comments.
   template <int dim>
   void
   SoftRobotDynamics<dim>::open_trajectory_file()
@@ -117,7 +175,8 @@ namespace SoftRobot
     trajectory << "# SoftRobotDynamics<" << dim << "> tip trajectory of "
                << parameters.tip_region_type << ' ' << parameters.tip_region_id
                << ", from " << parameters.source_name << "\n"
-               << "# units: s, mm, mm/s; energies in kg mm^2/s^2 (= 1e-6 J)\n"
+               << "# units: s, mm, mm/s; energies in kg mm^2/s^2 (= 1e-6 J); "
+                  "angular momentum in kg mm^2/s\n"
                << "t,dt";
     const char *axis = "xyz";
     for (unsigned int d = 0; d < dim; ++d)
@@ -125,7 +184,12 @@ namespace SoftRobot
     for (unsigned int d = 0; d < dim; ++d)
       trajectory << ",v_" << axis[d];
     trajectory << ",kinetic,strain,gravity_potential,traction_work,"
-                  "damping_dissipation,energy_balance,newton_iterations\n";
+                  "damping_dissipation,energy_balance,newton_iterations";
+    if (dim == 3)
+      trajectory << ",L_x,L_y,L_z";
+    else if (dim == 2)
+      trajectory << ",L_z";
+    trajectory << '\n';
   }
 
 
@@ -135,6 +199,7 @@ namespace SoftRobot
   SoftRobotDynamics<dim>::write_trajectory_line()
   {
     const auto [u_tip, v_tip] = tip_motion();
+    const Tensor<1, 3> L      = angular_momentum();
     if (Utilities::MPI::this_mpi_process(mpi_communicator) != 0)
       return;
     trajectory << std::setprecision(10) << current.time << ','
@@ -147,7 +212,12 @@ namespace SoftRobot
                << energy.gravity_potential << ',' << energy.traction_work << ','
                << energy.damping_dissipation << ','
                << energy.balance(initial_total_energy) << ','
-               << (step_number == 0 ? 0 : last_newton_iterations) << '\n';
+               << (step_number == 0 ? 0 : last_newton_iterations);
+    if (dim == 3)
+      trajectory << ',' << L[0] << ',' << L[1] << ',' << L[2];
+    else if (dim == 2)
+      trajectory << ',' << L[2];
+    trajectory << '\n';
     trajectory.flush();
   }
 
@@ -335,6 +405,7 @@ namespace SoftRobot
   template void SoftRobotDynamics<dim>::open_trajectory_file();     \
   template void SoftRobotDynamics<dim>::analyse_trajectory() const; \
   template void SoftRobotDynamics<dim>::write_trajectory_line();    \
+  template Tensor<1, 3> SoftRobotDynamics<dim>::angular_momentum() const; \
   template void SoftRobotDynamics<dim>::output_results(const unsigned int);
 
   SOFT_ROBOT_INSTANTIATE(1)

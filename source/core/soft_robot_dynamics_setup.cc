@@ -633,6 +633,13 @@ namespace SoftRobot
 
     gravity_force.reinit(locally_owned_dofs, mpi_communicator);
     mass = 0.;
+    // The nodes of a cell are the support points of the scalar base
+    // element; node n carries the dofs component_to_system_index(c, n).
+    const unsigned int nodes_per_cell = fe->base_element(0).n_dofs_per_cell();
+    const std::vector<Point<dim>> &unit_nodes =
+      fe->base_element(0).get_unit_support_points();
+    cell_nodal_mass.clear();
+    cell_node_positions.clear();
     for (const auto &cell : dof_handler.active_cell_iterators())
       if (cell->is_locally_owned())
         {
@@ -651,6 +658,15 @@ namespace SoftRobot
                                        fe_values[displacements].value(j, q) *
                                        fe_values.JxW(q);
               }
+          for (unsigned int n = 0; n < nodes_per_cell; ++n)
+            {
+              cell_node_positions.push_back(
+                mapping->transform_unit_to_real_cell(cell, unit_nodes[n]));
+              for (unsigned int k = 0; k < nodes_per_cell; ++k)
+                cell_nodal_mass.push_back(
+                  cell_matrix(fe->component_to_system_index(0, n),
+                              fe->component_to_system_index(0, k)));
+            }
           cell->get_dof_indices(dof_indices);
           constraints.distribute_local_to_global(
             cell_matrix, cell_gravity, dof_indices, mass, gravity_force);
