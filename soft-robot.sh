@@ -17,6 +17,14 @@
 #   ./soft-robot.sh locking    build in Release, run the locking study (linear
 #                              and quadratic elements, kappa/mu up to 1e4) and
 #                              write doc/locking.md (about 45 minutes)
+#   ./soft-robot.sh error-vs-runtime
+#                              build in Release, run experiment 1 over meshes,
+#                              degrees, formulations and time steps (3D and
+#                              1D; reads the locking study's dt = 0.01 s runs)
+#                              and write doc/error-vs-runtime.md
+#   ./soft-robot.sh twisting-column
+#                              build in Release, run the twisting-column
+#                              benchmark and write doc/twisting_column.md
 #
 # Build directories: build-release/ and build-debug/ beside this script.
 set -euo pipefail
@@ -73,11 +81,12 @@ case "${1:-}" in
     build Release build-release -DSOFT_ROBOT_BUILD_TESTS=OFF
     /usr/bin/python3 doc/locking/run_locking.py build-release "${@:2}"
     ;;
-  stability)
+  stability|error-vs-runtime|twisting-column)
     packages+=(python3-numpy python3-matplotlib)
     install_missing_packages
     build Release build-release -DSOFT_ROBOT_BUILD_TESTS=OFF
-    /usr/bin/python3 doc/stability/run_stability.py build-release "${@:2}"
+    script=${1//-/_}
+    /usr/bin/python3 "doc/$script/run_$script.py" build-release "${@:2}"
     ;;
   validate)
     packages+=(python3-matplotlib python3-numpy)
@@ -108,7 +117,7 @@ case "${1:-}" in
     echo "Wrote doc/validation.md"
     ;;
   *)
-    echo "Usage: $0 demo|test|validate|benchmark|stability|locking" >&2
+    echo "Usage: $0 demo|test|validate|benchmark|stability|locking|error-vs-runtime|twisting-column" >&2
     exit 2
     ;;
 esac

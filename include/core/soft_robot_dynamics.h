@@ -42,6 +42,16 @@
 //
 // For the reduced models every integral carries the material's `Section`
 // factor (cross-section area in 1D, thickness in 2D).
+//
+// In 3D, `Finite element/Volumetric formulation = mean dilatation` replaces
+// the volumetric energy $U(J)$ at each quadrature point by $V_e\,U(\Theta_e)$
+// per cell, with the cell's mean volume ratio $\Theta_e = V_e^{-1}\int_e
+// J\,dV$: the three-field formulation with pressure and dilatation constant
+// per cell, condensed cell by cell (see doc/introduction.md). With
+// quadratic elements it does not lock as $\kappa/\mu$ grows; the cell's
+// pressure $U'(\Theta_e)$ enters the stress at every point of the cell, and
+// the tangent gets the rank-one term $U''(\Theta_e)/V_e\;\mathbf g\mathbf
+// g^T$ with the derivative $\mathbf g$ of the cell's volume.
 
 #ifndef soft_robot_core_soft_robot_dynamics_h
 #define soft_robot_core_soft_robot_dynamics_h
