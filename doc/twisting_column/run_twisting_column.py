@@ -25,12 +25,10 @@ What is reported, from each run's tip_trajectory.csv (every step):
 Nothing here is a test: the numbers are reported, not checked.
 """
 
-import argparse
 import json
 import os
 import shutil
 import sys
-import time
 from pathlib import Path
 
 import numpy as np
@@ -43,8 +41,9 @@ REPOSITORY = Path(__file__).resolve().parents[2]
 FIGURES = "doc/figures/twisting_column"
 sys.path.insert(0, str(REPOSITORY / "doc" / "performance"))
 sys.path.insert(0, str(REPOSITORY / "doc" / "stability"))
-from run_benchmarks import (commit, machine_description,  # noqa: E402
-                            write_with_discussion)
+sys.path.insert(0, str(REPOSITORY / "doc"))
+from run_benchmarks import write_with_discussion  # noqa: E402
+from study_session import run_lines, study_main  # noqa: E402
 from run_stability import read_trajectory, run_program  # noqa: E402
 
 SCENE = "parameters/benchmarks/twisting_column.prm"
@@ -175,11 +174,7 @@ def write_report(path, results, session):
     lines = ["<!-- Written by doc/twisting_column/run_twisting_column.py; the "
              "discussion is in doc/twisting_column_discussion.md. -->",
              "# The twisting column\n"]
-    for run in session["runs"]:
-        lines.append(f"- `{run['command']}`: commit `{run['commit']}`, {run['date']}, "
-                     f"{run['total_seconds']:.0f} s; {run['machine']}; load average at "
-                     f"the start {run['load']}; {run['threads']} thread(s), one case at "
-                     "a time")
+    lines += run_lines(session)
     lines.append("")
     lines.append(
         f"Scene: `{SCENE}` (see its comments for the data): a 1 m × 6 m × 1 m "
@@ -214,49 +209,11 @@ def write_report(path, results, session):
 
 
 def main():
-    parser = argparse.ArgumentParser(description=__doc__,
-                                     formatter_class=argparse.RawDescriptionHelpFormatter)
-    parser.add_argument("build", help="the Release build directory (with soft-robot)")
-    parser.add_argument("--cases", help="comma-separated case names (default: all)")
-    parser.add_argument("--output", default="output/twisting_column")
-    parser.add_argument("--report", default="doc/twisting_column.md")
-    parser.add_argument("--timeout", type=float, default=1800.)
-    parser.add_argument("--threads", type=int, default=1)
-    parser.add_argument("--report-only", action="store_true")
-    arguments = parser.parse_args()
-
-    build = Path(arguments.build).resolve()
-    output_root = (REPOSITORY / arguments.output).resolve()
-    output_root.mkdir(parents=True, exist_ok=True)
-    selected = CASE_NAMES
-    if arguments.cases:
-        selected = arguments.cases.split(",")
-        unknown = set(selected) - set(CASE_NAMES)
-        if unknown:
-            sys.exit(f"unknown case(s): {', '.join(sorted(unknown))}")
-    session_path = output_root / "twisting_column_run.json"
-    session = json.loads(session_path.read_text()) if session_path.exists() else {"runs": []}
-    if not arguments.report_only:
-        if not (build / "soft-robot").exists():
-            sys.exit(f"{build / 'soft-robot'} does not exist: build in Release first")
-        try:
-            shown = str(build.relative_to(REPOSITORY))
-        except ValueError:
-            shown = "<Release build directory>"
-        run = {"command": f"/usr/bin/python3 doc/twisting_column/run_twisting_column.py "
-                          f"{shown}" + (f" --cases {arguments.cases}" if arguments.cases else ""),
-               "commit": commit(), "machine": machine_description(),
-               "load": ", ".join(f"{x:.2f}" for x in os.getloadavg()),
-               "date": time.strftime("%Y-%m-%d"), "threads": arguments.threads}
-        start = time.perf_counter()
-        by_name = {c[0]: c for c in CASES}
-        for name in selected:
-            run_case(build, output_root, by_name[name], arguments.timeout, arguments.threads)
-        run["total_seconds"] = time.perf_counter() - start
-        session["runs"] = (session["runs"] if arguments.cases else []) + [run]
-        session_path.write_text(json.dumps(session, indent=1) + "\n")
-    results = [r for r in (load_case(output_root, n) for n in CASE_NAMES) if r]
-    write_report(REPOSITORY / arguments.report, results, session)
+    by_name = {case[0]: case for case in CASES}
+    study_main(__doc__, "doc/twisting_column/run_twisting_column.py", "output/twisting_column", "doc/twisting_column.md", CASE_NAMES,
+               lambda build, output_root, name, timeout, threads: run_case(
+                   build, output_root, by_name[name], timeout, threads),
+               load_case, write_report)
 
 
 if __name__ == "__main__":
