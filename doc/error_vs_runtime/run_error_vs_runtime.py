@@ -269,6 +269,13 @@ def load_case(output_root, name):
     result = json.loads(path.read_text())
     case = next(c for c in CASES if c[0] == name)
     result.update({"model": case[1], "family": case[2], "label": case[3]})
+    # The spectrum is read again from the run's own output, so that the
+    # report always uses the direction this script asks for.
+    source = (REPOSITORY / "output" / "locking" / case[7].split(":", 1)[1]
+              if case[7].startswith("locking:") else output_root / name)
+    if (source / "tip_spectrum.csv").exists():
+        result["spectrum"] = read_spectrum(
+            source, "vertical" if experiment_of(name) == "1" else "horizontal")
     return result
 
 
