@@ -7,8 +7,10 @@
 
 #include <core/soft_robot_dynamics.h>
 #include <deal.II/base/multithread_info.h>
+#include <deal.II/base/thread_management.h>
 #include <deal.II/base/work_stream.h>
 #include <deal.II/fe/fe_values.h>
+#include <array>
 #include <limits>
 #include <numeric>
 
@@ -405,8 +407,13 @@ namespace SoftRobot
     };
 
     // A residual costs about a microsecond per linear tetrahedron, too
-    // little for the threads' synchronisation to pay (on the bellows it made
-    // the residual assembly slower); it runs in this thread.
+    // little for WorkStream's synchronisation per chunk of cells to pay (on
+    // the bellows it made the residual assembly slower). In serial runs the
+    // cells are instead split into two halves, each summed into its own copy
+    // of the force vector, and the two copies are added in a fixed order:
+    // with two or more threads the halves run at the same time, and the
+    // result does not depend on the number of threads. Parallel runs
+    // assemble residuals in one thread.
     std::vector<unsigned int> cells(geometry.n_cells);
     std::iota(cells.begin(), cells.end(), 0U);
     if (with_matrix)
@@ -418,6 +425,53 @@ namespace SoftRobot
                       CellContribution(),
                       2 * MultithreadInfo::n_threads(),
                       64);
+    else if (direct_addresses)
+      {
+        constexpr unsigned int              n_parts = 2;
+        const unsigned int                  n_values = internal_force.locally_owned_size();
+        std::array<std::vector<double>, n_parts> part_force;
+        std::array<AssemblyResult, n_parts>      part_result;
+        const auto assemble_part = [&](const unsigned int part) {
+          part_force[part].assign(n_values, 0.);
+          AssemblyScratch<dim> scratch;
+          CellContribution     local;
+          for (unsigned int cell = part * geometry.n_cells / n_parts;
+               cell < (part + 1) * geometry.n_cells / n_parts;
+               ++cell)
+            {
+              local_assemble(&cell, scratch, local);
+              const int *vector_position =
+                &geometry.vector_positions[cell * dofs_per_cell];
+              for (unsigned int i = 0; i < dofs_per_cell; ++i)
+                if (vector_position[i] >= 0)
+                  part_force[part][vector_position[i]] += local.force(i);
+              AssemblyResult &r = part_result[part];
+              r.strain_energy += local.strain_energy;
+              r.min_jacobian = std::min(r.min_jacobian, local.min_jacobian);
+              r.inverted_point_found = r.inverted_point_found || local.inverted;
+            }
+        };
+        if (MultithreadInfo::n_threads() > 1)
+          {
+            Threads::Task<void> first_half =
+              Threads::new_task([&assemble_part]() { assemble_part(0); });
+            assemble_part(1);
+            first_half.join();
+          }
+        else
+          for (unsigned int part = 0; part < n_parts; ++part)
+            assemble_part(part);
+        for (unsigned int part = 0; part < n_parts; ++part)
+          {
+            for (unsigned int k = 0; k < n_values; ++k)
+              force_values[k] += part_force[part][k];
+            result.strain_energy += part_result[part].strain_energy;
+            result.min_jacobian =
+              std::min(result.min_jacobian, part_result[part].min_jacobian);
+            result.inverted_point_found = result.inverted_point_found ||
+                                          part_result[part].inverted_point_found;
+          }
+      }
     else
       {
         AssemblyScratch<dim> scratch;
