@@ -162,6 +162,9 @@ for scene, experiment in ((SCENE_PLANAR_3D, "planar"), (SCENE_SPHERICAL_3D, "sph
                   "P1 coarse, dt = 0.01", scene, [], 0.01, "run"))
     CASES.append((f"{experiment}_p2md_coarse_dt0.01", "3D", "3D P2 mean dilatation",
                   "P2 mean dilatation coarse, dt = 0.01", scene, P2 + MD, 0.01, "run"))
+    for dt in (0.02, 0.005, 0.0025):
+        CASES.append((f"{experiment}_p1_coarse_dt{dt:g}", "3D", "3D P1 coarse, dt series",
+                      f"P1 coarse, dt = {dt:g}", scene, dt_entry(dt), dt, "run"))
 for degree, refinements, dt in ((1, 0, 0.01), (2, 0, 0.02), (2, 0, 0.01), (2, 0, 0.005),
                                 (2, 0, 0.0025), (2, 0, 0.00125), (2, 1, 0.01)):
     CASES.append((f"planar_2d_p{degree}_r{refinements}_dt{dt:g}", "2D",
@@ -324,10 +327,12 @@ FAMILY_STYLE = {
 
 # A time-step series also shows the run of its discretisation at the
 # scenes' dt = 0.01 s, which belongs to the spatial series.
-SERIES_ALSO = {"3D P1 coarse, dt series": "p1_coarse_dt0.01",
-               "3D P2 mean dilatation coarse, dt series": "p2md_coarse_dt0.01",
-               "1D column P2, dt series": "column_p2_r0_dt0.01",
-               "2D strip P2, dt series": "planar_2d_p2_r0_dt0.01"}
+SERIES_ALSO = [("3D P1 coarse, dt series", "p1_coarse_dt0.01"),
+               ("3D P1 coarse, dt series", "planar_p1_coarse_dt0.01"),
+               ("3D P1 coarse, dt series", "spherical_p1_coarse_dt0.01"),
+               ("3D P2 mean dilatation coarse, dt series", "p2md_coarse_dt0.01"),
+               ("1D column P2, dt series", "column_p2_r0_dt0.01"),
+               ("2D strip P2, dt series", "planar_2d_p2_r0_dt0.01")]
 
 
 
@@ -341,8 +346,9 @@ def family_points(results, errors, measure, reference):
         if e is None or not r.get("wall") or r["name"] == reference:
             continue
         by_family.setdefault(r["family"], []).append((r["wall"], abs(e[measure]), r))
-    for family, name in SERIES_ALSO.items():
-        if family in by_family and errors.get(name) and by_name[name].get("wall"):
+    for family, name in SERIES_ALSO:
+        if (family in by_family and name in by_name and errors.get(name)
+                and by_name[name].get("wall")):
             by_family[family].append((by_name[name]["wall"],
                                       abs(errors[name][measure]), by_name[name]))
     for points in by_family.values():
