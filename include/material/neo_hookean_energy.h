@@ -187,12 +187,9 @@ namespace SoftRobot
     double
     volumetric_stiffness(const double theta_minus_one) const;
 
-    // $J - 1 = d/(1 + \sqrt{1 + d})$ from the strain (no cancellation), and
-    // $\partial J/\partial\mathbf E = J\,\mathbf C^{-1}$.
+    // $J - 1 = d/(1 + \sqrt{1 + d})$ from the strain (no cancellation).
     static double
     volume_change(const SymmetricTensor<2, dim> &E);
-    static SymmetricTensor<2, dim>
-    volume_ratio_derivative(const SymmetricTensor<2, dim> &E);
 
     // The isochoric energy plus a constant pressure $p$ times $J - 1$,
     // differentiated: $\mathbf S = \partial\Psi_{\mathrm{iso}}/\partial

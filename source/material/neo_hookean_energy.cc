@@ -257,18 +257,6 @@ namespace SoftRobot
 
 
 
-  template <int dim>
-  SymmetricTensor<2, dim>
-  NeoHookeanEnergy<dim>::volume_ratio_derivative(
-    const SymmetricTensor<2, dim> &E)
-  {
-    const SymmetricTensor<2, dim> C =
-      unit_symmetric_tensor<dim>() + 2. * E;
-    return std::sqrt(determinant(C)) * invert(C);
-  }
-
-
-
   // The helper class ScalarFunction registers the components of $\mathbf
   // E$ as independent variables and takes care of the symmetric storage
   // itself: the gradient with respect to a SymmetricTensor comes back as
