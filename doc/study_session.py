@@ -1,7 +1,7 @@
 """The command line and the session record shared by the study scripts
-doc/error_vs_runtime/run_error_vs_runtime.py and
+doc/locking/run_locking.py, doc/error_vs_runtime/run_error_vs_runtime.py and
 doc/twisting_column/run_twisting_column.py: which cases to run, running
-them one at a time, and the list of runs (command, commit, machine, load,
+them one at a time (in the order the script lists them), and the list of runs (command, commit, machine, load,
 date, duration) that the report names. A run of all cases starts the list
 afresh; a run with --cases adds itself to it, and the report shows its cases
 with those of the earlier runs. --report-only writes the report from the
@@ -32,7 +32,7 @@ def study_main(description, script, output, report, cases, run_case, load_case,
     """Parses the command line, runs the selected cases with
     run_case(build, output_root, name, timeout, threads), and writes the
     report with write_report(path, results, session) from the results
-    load_case(output_root, name) finds."""
+    load_case(output_root, name) finds (None for a case that has not run)."""
     parser = argparse.ArgumentParser(description=description,
                                      formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("build", help="the Release build directory (with soft-robot)")
@@ -52,11 +52,12 @@ def study_main(description, script, output, report, cases, run_case, load_case,
     output_root.mkdir(parents=True, exist_ok=True)
     selected = cases
     if arguments.cases:
-        selected = arguments.cases.split(",")
-        unknown = set(selected) - set(cases)
+        names = arguments.cases.split(",")
+        unknown = set(names) - set(cases)
         if unknown:
             sys.exit(f"unknown case(s): {', '.join(sorted(unknown))}; "
                      f"known: {', '.join(cases)}")
+        selected = [name for name in cases if name in names]
     session_path = output_root / "session.json"
     session = json.loads(session_path.read_text()) if session_path.exists() else {"runs": []}
     if not arguments.report_only:
@@ -70,7 +71,9 @@ def study_main(description, script, output, report, cases, run_case, load_case,
                           + (f" --cases {arguments.cases}" if arguments.cases else ""),
                "commit": commit(), "machine": machine_description(),
                "load": ", ".join(f"{x:.2f}" for x in os.getloadavg()),
-               "date": time.strftime("%Y-%m-%d"), "threads": arguments.threads}
+               "date": time.strftime("%Y-%m-%d"), "threads": arguments.threads,
+               "timeout": arguments.timeout,
+               "cases": arguments.cases.split(",") if arguments.cases else None}
         start = time.perf_counter()
         for name in selected:
             run_case(build, output_root, name, arguments.timeout, arguments.threads)

@@ -458,7 +458,7 @@ def write_report(path, results, session):
              "discussion is in doc/error-vs-runtime_discussion.md. -->",
              "# Error against run time\n"]
     lines += run_lines(session)
-    locking = REPOSITORY / "output" / "locking" / "locking_run.json"
+    locking = REPOSITORY / "output" / "locking" / "session.json"
     if locking.exists():
         for run in json.loads(locking.read_text()).get("runs", []):
             lines.append(f"- the dt = 0.01 s 3D cases of experiment 1 come from the "

@@ -46,7 +46,7 @@ silicone: it must fall as kappa rises, if the override took effect.
 Without --cases the script runs every case and the report shows them.
 With --cases it runs only those and the report shows them together with the
 cases of earlier runs found in the output directory; the file
-locking_run.json there keeps each run's command, commit, date and duration
+session.json there keeps each run's command, commit, date and duration
 for the report's header (a run of all cases starts it afresh).
 --report-only writes the report from the output directory alone.
 
@@ -62,7 +62,6 @@ group) and reported as a hang. The program runs with --threads threads
 Nothing here is a test: the numbers are reported, not checked.
 """
 
-import argparse
 import csv
 import json
 import math
@@ -70,7 +69,6 @@ import os
 import re
 import shutil
 import sys
-import time
 from pathlib import Path
 
 import numpy as np
@@ -87,8 +85,9 @@ FIGURES = "doc/figures/locking"
 # study.
 sys.path.insert(0, str(REPOSITORY / "doc" / "performance"))
 sys.path.insert(0, str(REPOSITORY / "doc" / "stability"))
-from run_benchmarks import (commit, machine_description,  # noqa: E402
-                            write_with_discussion)
+sys.path.insert(0, str(REPOSITORY / "doc"))
+from run_benchmarks import write_with_discussion  # noqa: E402
+from study_session import study_main  # noqa: E402
 from run_stability import (cutbacks_from_log, deformation_of_cells,  # noqa: E402
                            read_trajectory, read_vtu, run_program)
 
@@ -256,9 +255,7 @@ def run_case(build, output_root, case, timeout, threads):
 
 def load_case(output_root, name):
     path = output_root / name / "result.json"
-    if not path.exists():
-        sys.exit(f"{path} does not exist: run the case first (without --report-only)")
-    return json.loads(path.read_text())
+    return json.loads(path.read_text()) if path.exists() else None
 
 
 # @sect{What the report shows}
@@ -586,75 +583,16 @@ def write_report(path, results, session):
 
 
 def main():
-    parser = argparse.ArgumentParser(description=__doc__,
-                                     formatter_class=argparse.RawDescriptionHelpFormatter)
-    parser.add_argument("build", help="the Release build directory (with soft-robot)")
-    parser.add_argument("--cases", help="comma-separated case names (default: all)")
-    parser.add_argument("--output", default="output/locking")
-    parser.add_argument("--report", default="doc/locking.md")
-    parser.add_argument("--timeout", type=float, default=1800.,
-                        help="seconds after which a case is killed (default 1800)")
-    parser.add_argument("--threads", type=int, default=1,
-                        help="threads of the program (DEAL_II_NUM_THREADS, default 1)")
-    parser.add_argument("--report-only", action="store_true",
-                        help="write the report from the output of the last run")
-    arguments = parser.parse_args()
-
-    build = Path(arguments.build).resolve()
-    if not arguments.report_only and not (build / "soft-robot").exists():
-        sys.exit(f"{build / 'soft-robot'} does not exist: build in Release first")
-    selected = RUN_ORDER
-    if arguments.cases:
-        names = arguments.cases.split(",")
-        unknown = set(names) - set(CASE_NAMES)
-        if unknown:
-            sys.exit(f"unknown case(s): {', '.join(sorted(unknown))}; "
-                     f"known: {', '.join(CASE_NAMES)}")
-        selected = [name for name in RUN_ORDER if name in names]
     by_name = {case[0]: case for case in CASES}
-    output_root = (REPOSITORY / arguments.output).resolve()
-    output_root.mkdir(parents=True, exist_ok=True)
-
-    try:
-        build_shown = str(build.relative_to(REPOSITORY))
-    except ValueError:
-        build_shown = "<Release build directory>"
-    command = f"/usr/bin/python3 doc/locking/run_locking.py {build_shown}" + (
-        f" --cases {arguments.cases}" if arguments.cases else "") + (
-        f" --threads {arguments.threads}" if arguments.threads != 1 else "")
-    # What the report says about the runs: kept with the results, so that a
-    # report written later (--report-only) names the commit that ran. A run
-    # of all cases starts the list afresh; a run with --cases adds itself to
-    # it, and the report shows its cases with those of the earlier runs.
-    session_path = output_root / "locking_run.json"
-    session = json.loads(session_path.read_text()) if session_path.exists() else {}
-    if "runs" not in session:  # the file of a single run
-        session = {"runs": [session] if session else []}
-    if arguments.report_only:
-        if arguments.cases:
-            results = [load_case(output_root, name) for name in selected]
-        else:
-            results = [load_case(output_root, name) for name in RUN_ORDER
-                       if (output_root / name / "result.json").exists()]
-    else:
-        run = {"command": command, "commit": commit(), "machine": machine_description(),
-               "load": ", ".join(f"{x:.2f}" for x in os.getloadavg()),
-               "date": time.strftime("%Y-%m-%d"), "timeout": arguments.timeout,
-               "threads": arguments.threads, "cases": arguments.cases.split(",")
-               if arguments.cases else None}
-        start = time.perf_counter()
-        results = [run_case(build, output_root, by_name[name], arguments.timeout,
-                            arguments.threads) for name in selected]
-        run["total_seconds"] = time.perf_counter() - start
-        session["runs"] = (session["runs"] if arguments.cases else []) + [run]
-        session_path.write_text(json.dumps(session, indent=1) + "\n")
-        if arguments.cases:
-            results += [load_case(output_root, name) for name in RUN_ORDER
-                        if name not in selected
-                        and (output_root / name / "result.json").exists()]
-    # The report lists the cases in the order of CASES, not of the runs.
-    results.sort(key=lambda r: CASE_NAMES.index(r["name"]))
-    write_report(REPOSITORY / arguments.report, results, session)
+    study_main(__doc__, "doc/locking/run_locking.py", "output/locking", "doc/locking.md",
+               RUN_ORDER,
+               lambda build, output_root, name, timeout, threads: run_case(
+                   build, output_root, by_name[name], timeout, threads),
+               load_case,
+               # the report lists the cases in the order of CASES, not of the runs
+               lambda path, results, session: write_report(
+                   path, sorted(results, key=lambda r: CASE_NAMES.index(r["name"])),
+                   session))
 
 
 if __name__ == "__main__":
