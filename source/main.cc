@@ -10,6 +10,7 @@
 #include <core/soft_robot_dynamics.h>
 #include <deal.II/base/exceptions.h>
 #include <deal.II/base/mpi.h>
+#include <cstdlib>
 #include <iostream>
 #include <string>
 #include <vector>
@@ -41,6 +42,13 @@ int
 main(int argc, char *argv[])
 {
   using namespace SoftRobot;
+  // A run started without mpirun is an MPI singleton, for which Open MPI
+  // starts a helper daemon (orted) that probes the machine; that costs a
+  // quarter of a second at every start and is of no use to a program that
+  // never spawns processes. Open MPI's own switch turns it off, unless the
+  // user set it; other MPI implementations ignore the variable.
+  if (std::getenv("OMPI_COMM_WORLD_SIZE") == nullptr)
+    setenv("OMPI_MCA_ess_singleton_isolated", "1", /*overwrite=*/0);
   // Threads for the assembly: deal.II's default, the cores of the machine
   // divided among its MPI processes (DEAL_II_NUM_THREADS limits them).
   dealii::Utilities::MPI::MPI_InitFinalize mpi(

@@ -192,6 +192,8 @@ namespace SoftRobot
       double       absolute_tolerance;
       double       relative_tolerance;
       std::string  tangent_update;
+      unsigned int acceleration_depth;
+      bool         tangent_extrapolation;
       bool         line_search;
       unsigned int max_line_search_steps;
       bool         verbose;

@@ -67,12 +67,15 @@
 #include <deal.II/fe/fe_system.h>
 #include <deal.II/fe/mapping.h>
 #include <deal.II/lac/affine_constraints.h>
+#include <deal.II/lac/vector.h>
 #include <deal.II/lac/trilinos_sparse_matrix.h>
 #include <deal.II/lac/trilinos_vector.h>
+#include <deque>
 #include <fstream>
 #include <functional>
 #include <material/neo_hookean_energy.h>
 #include <memory>
+#include <thread>
 #include <time_integration/hht_stepper.h>
 #include <vector>
 
@@ -254,6 +257,12 @@ namespace SoftRobot
     {
       return total_newton_iterations;
     }
+    // Matrix factorizations (or multigrid set-ups) so far.
+    unsigned int
+    n_tangent_updates() const
+    {
+      return total_tangent_updates;
+    }
 
   private:
     // @sect4{The state of the motion}
@@ -337,8 +346,43 @@ namespace SoftRobot
                  const double                   force_scale,
                  unsigned int                  &iterations,
                  const bool                     modified = false);
+    // Anderson acceleration of the modified Newton iterations (see
+    // newton_solve()).
+    bool
+    anderson_step(const TrilinosWrappers::MPI::Vector       &iterate,
+                  const TrilinosWrappers::MPI::Vector       &update,
+                  const unsigned int                         depth,
+                  bool                                      &have_last_update,
+                  TrilinosWrappers::MPI::Vector             &last_iterate,
+                  TrilinosWrappers::MPI::Vector             &last_update,
+                  std::deque<TrilinosWrappers::MPI::Vector> &iterate_differences,
+                  std::deque<TrilinosWrappers::MPI::Vector> &update_differences,
+                  TrilinosWrappers::MPI::Vector             &step) const;
     void
     output_results(const unsigned int output_index);
+    // Waits for the thread that writes VTU files in serial runs.
+    void
+    finish_output();
+    // What output_results() hands to the writing: the time, the step and
+    // output numbers, the PVD record up to this output, and in serial runs
+    // copies of the nodal values.
+    struct OutputJob
+    {
+      double                                      time         = 0.;
+      unsigned int                                cycle        = 0;
+      unsigned int                                output_index = 0;
+      std::vector<std::pair<double, std::string>> pvd_records;
+      Vector<double>                              u, v, a;
+    };
+    template <typename VectorType>
+    void
+    write_output(const OutputJob  &job,
+                 const VectorType &u,
+                 const VectorType &v,
+                 const VectorType &a) const;
+    std::thread output_writer;
+    std::string output_error;
+    double      background_output_seconds = 0.;
     void
     open_trajectory_file();
     void
@@ -395,6 +439,30 @@ namespace SoftRobot
     };
     void
     setup_cell_geometry();
+
+    // The boundary faces that carry the nominal tractions, with what their
+    // forces need in the reference configuration, which never changes: the
+    // quadrature points, and per point the values of the scalar shape
+    // functions times the weight and the section factor, [face][q][i]
+    // (the component of shape function i is CellGeometry::components[i]).
+    // The traction is evaluated at the points every step; faces where it
+    // vanishes -- every face after a release -- add nothing.
+    struct TractionFaces
+    {
+      unsigned int                         n_faces    = 0;
+      unsigned int                         n_q_points = 0;
+      std::vector<types::global_dof_index> dof_indices;
+      std::vector<Point<dim>>              points;
+      std::vector<double>                  weighted_shape_values;
+    };
+    void
+    setup_traction_faces();
+    // The tip motion's weights, one vector per component, and their sum
+    // (see tip_motion()).
+    void
+    setup_tip_weights();
+    std::vector<TrilinosWrappers::MPI::Vector> tip_weights;
+    double                                     tip_total_weight = 0.;
     void
     write_run_statistics(const double wall_time) const;
 
@@ -424,6 +492,7 @@ namespace SoftRobot
 
     std::map<types::material_id, NeoHookeanEnergy<dim>> materials;
     CellGeometry                                         cell_geometry;
+    TractionFaces                                        traction_faces;
     std::map<types::material_id, double>                densities;
 
     HHTStepper                  stepper;
@@ -450,6 +519,12 @@ namespace SoftRobot
     // (after the assembly at the end of a step), from which the next
     // step's modified-Newton matrix is formed.
     bool system_matrix_is_state_stiffness = false;
+    // The stiffness matrices of the last two converged states and their
+    // times, from which prepare_step_tangent() extrapolates.
+    std::unique_ptr<TrilinosWrappers::SparseMatrix> older_stiffness,
+      newer_stiffness;
+    double older_stiffness_time = -std::numeric_limits<double>::max();
+    double newer_stiffness_time = -std::numeric_limits<double>::max();
     // The prepared linear solver: the sparse factorization (Amesos KLU,
     // whose symbolic analysis of the sparsity pattern is done once per
     // matrix object) or the multigrid hierarchy.

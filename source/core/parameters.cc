@@ -584,6 +584,25 @@ namespace SoftRobot
         "to the same tolerance; 'every step' is several times cheaper for "
         "smooth motions. The static equilibrium always uses 'every "
         "iteration'.");
+      prm.declare_entry(
+        "Acceleration depth",
+        "2",
+        Patterns::Integer(0, 10),
+        "With 'Tangent update = every step': the number of previous "
+        "iterations whose iterates and updates Anderson acceleration "
+        "combines into the next step (zero turns it off). The accelerated "
+        "step is taken only if it lowers the residual; the converged answer "
+        "is the same to the tolerance, reached in fewer iterations.");
+      prm.declare_entry(
+        "Tangent extrapolation",
+        "true",
+        Patterns::Bool(),
+        "With 'Tangent update = every step': build the step's matrix from "
+        "the stiffness extrapolated linearly in time from the last two "
+        "converged states, K_n + (K_n - K_n-1) dt_n+1/dt_n, instead of K_n "
+        "alone. It is closer to the stiffness at the end of the step, and "
+        "the iterations converge faster; the converged answer is the same "
+        "to the tolerance.");
       prm.declare_entry("Line search",
                         "true",
                         Patterns::Bool(),
@@ -609,6 +628,8 @@ namespace SoftRobot
       absolute_tolerance    = prm.get_double("Absolute tolerance");
       relative_tolerance    = prm.get_double("Relative tolerance");
       tangent_update        = prm.get("Tangent update");
+      acceleration_depth    = prm.get_integer("Acceleration depth");
+      tangent_extrapolation = prm.get_bool("Tangent extrapolation");
       line_search           = prm.get_bool("Line search");
       max_line_search_steps = prm.get_integer("Max line search steps");
       verbose               = prm.get_bool("Verbose");

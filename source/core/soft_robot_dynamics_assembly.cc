@@ -521,52 +521,45 @@ namespace SoftRobot
     force = gravity_force;
     if (!parameters.traction_boundary_ids.empty())
       {
+        // The faces and their reference data come from
+        // setup_traction_faces(); a face where the traction vanishes at all
+        // points adds nothing.
         TimerOutput::Scope timer_section(computing_timer, "Assemble tractions");
-        TrilinosWrappers::MPI::Vector    traction_force(locally_owned_dofs,
+        TrilinosWrappers::MPI::Vector traction_force(locally_owned_dofs,
                                                      mpi_communicator);
-        FEFaceValues<dim>                fe_face_values(*mapping,
-                                         *fe,
-                                         *face_quadrature,
-                                         update_values |
-                                           update_quadrature_points |
-                                           update_JxW_values);
-        const FEValuesExtractors::Vector displacements(0);
-        const unsigned int               dofs_per_cell = fe->n_dofs_per_cell();
-        Vector<double>                   cell_force(dofs_per_cell);
+        const unsigned int dofs_per_cell = fe->n_dofs_per_cell();
+        const unsigned int n_q_points    = traction_faces.n_q_points;
+        Vector<double>     cell_force(dofs_per_cell);
         std::vector<types::global_dof_index> dof_indices(dofs_per_cell);
+        Vector<double>                       value(dim);
         traction_function.set_time(time);
-        Vector<double>                     value(dim);
-        const std::set<types::boundary_id> ids(
-          parameters.traction_boundary_ids.begin(),
-          parameters.traction_boundary_ids.end());
-
-        for (const auto &cell : dof_handler.active_cell_iterators())
-          if (cell->is_locally_owned())
-            for (const auto face : cell->face_indices())
-              if (cell->face(face)->at_boundary() &&
-                  ids.count(cell->face(face)->boundary_id()) == 1)
-                {
-                  fe_face_values.reinit(cell, face);
-                  cell_force           = 0.;
-                  const double section = material_of(cell).section;
-                  for (const unsigned int q :
-                       fe_face_values.quadrature_point_indices())
-                    {
-                      traction_function.vector_value(
-                        fe_face_values.quadrature_point(q), value);
-                      Tensor<1, dim> t;
-                      for (unsigned int d = 0; d < dim; ++d)
-                        t[d] = value[d];
-                      for (const unsigned int i : fe_face_values.dof_indices())
-                        cell_force(i) +=
-                          fe_face_values[displacements].value(i, q) * t *
-                          fe_face_values.JxW(q) * section;
-                    }
-                  cell->get_dof_indices(dof_indices);
-                  constraints.distribute_local_to_global(cell_force,
-                                                         dof_indices,
-                                                         traction_force);
-                }
+        for (unsigned int face = 0; face < traction_faces.n_faces; ++face)
+          {
+            bool loaded = false;
+            cell_force  = 0.;
+            for (unsigned int q = 0; q < n_q_points; ++q)
+              {
+                traction_function.vector_value(
+                  traction_faces.points[face * n_q_points + q], value);
+                if (value.l2_norm() == 0.)
+                  continue;
+                loaded              = true;
+                const double *shape = &traction_faces.weighted_shape_values
+                                         [(face * n_q_points + q) *
+                                          dofs_per_cell];
+                for (unsigned int i = 0; i < dofs_per_cell; ++i)
+                  cell_force(i) +=
+                    shape[i] * value[cell_geometry.components[i]];
+              }
+            if (!loaded)
+              continue;
+            std::copy_n(&traction_faces.dof_indices[face * dofs_per_cell],
+                        dofs_per_cell,
+                        dof_indices.begin());
+            constraints.distribute_local_to_global(cell_force,
+                                                   dof_indices,
+                                                   traction_force);
+          }
         traction_force.compress(VectorOperation::add);
         force += traction_force;
       }

@@ -172,6 +172,8 @@ namespace SoftRobot
   template <int dim>
   SoftRobotDynamics<dim>::~SoftRobotDynamics()
   {
+    if (output_writer.joinable())
+      output_writer.join();
     dof_handler.clear();
   }
 
@@ -483,6 +485,8 @@ namespace SoftRobot
 
     assemble_mass_matrix();
     setup_cell_geometry();
+    setup_traction_faces();
+    setup_tip_weights();
 
     pcout << "Degrees of freedom: " << dof_handler.n_dofs() << " ("
           << fe->get_name() << ", "
@@ -607,6 +611,58 @@ namespace SoftRobot
                   position(dofs[i], dofs[j]);
           }
       }
+  }
+
+
+
+  // @sect4{SoftRobotDynamics::setup_traction_faces}
+  //
+  // The data described at the declaration of TractionFaces, for the
+  // locally owned cells' faces on the boundaries the parameter file names.
+  template <int dim>
+  void
+  SoftRobotDynamics<dim>::setup_traction_faces()
+  {
+    traction_faces = TractionFaces();
+    if (parameters.traction_boundary_ids.empty())
+      return;
+    const std::set<types::boundary_id> ids(
+      parameters.traction_boundary_ids.begin(),
+      parameters.traction_boundary_ids.end());
+    FEFaceValues<dim>  fe_face_values(*mapping,
+                                     *fe,
+                                     *face_quadrature,
+                                     update_values | update_quadrature_points |
+                                       update_JxW_values);
+    const unsigned int dofs_per_cell = fe->n_dofs_per_cell();
+    std::vector<types::global_dof_index> dof_indices(dofs_per_cell);
+    traction_faces.n_q_points = face_quadrature->size();
+    for (const auto &cell : dof_handler.active_cell_iterators())
+      if (cell->is_locally_owned())
+        for (const auto face : cell->face_indices())
+          if (cell->face(face)->at_boundary() &&
+              ids.count(cell->face(face)->boundary_id()) == 1)
+            {
+              fe_face_values.reinit(cell, face);
+              cell->get_dof_indices(dof_indices);
+              traction_faces.dof_indices.insert(
+                traction_faces.dof_indices.end(),
+                dof_indices.begin(),
+                dof_indices.end());
+              const double section = material_of(cell).section;
+              for (const unsigned int q :
+                   fe_face_values.quadrature_point_indices())
+                {
+                  traction_faces.points.push_back(
+                    fe_face_values.quadrature_point(q));
+                  for (const unsigned int i : fe_face_values.dof_indices())
+                    traction_faces.weighted_shape_values.push_back(
+                      fe_face_values.shape_value_component(
+                        i, q, cell_geometry.components[i]) *
+                      fe_face_values.JxW(q) * section);
+                }
+              ++traction_faces.n_faces;
+            }
   }
 
 
@@ -736,7 +792,10 @@ namespace SoftRobot
         catch (RunAborted &)
           {
             if (parameters.write_vtu)
-              output_results(output_index++);
+              {
+                output_results(output_index++);
+                finish_output();
+              }
             throw;
           }
         if (!advanced)
@@ -765,6 +824,7 @@ namespace SoftRobot
           }
       }
 
+    finish_output();
     const double wall_time = wall_clock.wall_time();
     pcout << "Finished " << step_number << " steps in " << wall_time
           << " s: " << total_newton_iterations << " Newton iterations, "
@@ -802,6 +862,8 @@ namespace SoftRobot
       1024.;
     std::map<std::string, double> sections =
       computing_timer.get_summary_data(TimerOutput::total_wall_time);
+    if (background_output_seconds > 0.)
+      sections["Output (writing thread)"] = background_output_seconds;
     for (auto &[name, seconds] : sections)
       seconds = Utilities::MPI::max(seconds, mpi_communicator);
     if (Utilities::MPI::this_mpi_process(mpi_communicator) != 0)
@@ -851,6 +913,7 @@ namespace SoftRobot
   template void SoftRobotDynamics<dim>::setup_system();                     \
   template void SoftRobotDynamics<dim>::assemble_mass_matrix();             \
   template void SoftRobotDynamics<dim>::setup_cell_geometry();              \
+  template void SoftRobotDynamics<dim>::setup_traction_faces();             \
   template void SoftRobotDynamics<dim>::write_run_statistics(const double)  \
     const;                                                                  \
   template const Parameters::Material &SoftRobotDynamics<dim>::material_of( \

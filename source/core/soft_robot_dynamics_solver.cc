@@ -10,8 +10,11 @@
 #include <Epetra_MultiVector.h>
 #include <Teuchos_ParameterList.hpp>
 #include <cmath>
+#include <deque>
 #include <core/soft_robot_dynamics.h>
 #include <deal.II/base/function_parser.h>
+#include <deal.II/lac/full_matrix.h>
+#include <deal.II/lac/vector.h>
 #include <deal.II/lac/solver_cg.h>
 #include <deal.II/lac/solver_control.h>
 #include <deal.II/lac/solver_gmres.h>
@@ -124,6 +127,22 @@ namespace SoftRobot
   // matrix, or when the line search fails with it, the tangent is rebuilt
   // at the current iterate. The modified variant is allowed twice the
   // iterations of the full one.
+  //
+  // The modified iterations are a fixed-point iteration $\mathbf u_{k+1} =
+  // \mathbf u_k + \mathbf d_k$ with the update $\mathbf d_k = -\mathbf
+  // K^{-1}\mathbf r(\mathbf u_k)$ of a fixed matrix, and Anderson
+  // acceleration (Walker and Ni, SIAM J. Numer. Anal. 49, 2011) speeds up
+  // such iterations cheaply: from the differences $\Delta\mathbf u_j$ of
+  // the last $m$ iterates and $\Delta\mathbf d_j$ of their updates, the
+  // coefficients $\gamma$ minimize $\|\mathbf d_k - \sum_j\gamma_j
+  // \Delta\mathbf d_j\|$, and the step is $\mathbf d_k - \sum_j
+  // \gamma_j(\Delta\mathbf u_j + \Delta\mathbf d_j)$. For a linear
+  // problem this is GMRES on the preconditioned system in disguise; here
+  // it learns, from the iterates, how the tangent has changed since the
+  // matrix was built. The step is tried first; if it does not lower the
+  // residual, the plain update (with the line search) is taken and the
+  // history is dropped, as it is whenever the matrix changes. $m$ is the
+  // parameter `Acceleration depth`; zero turns it off.
   template <int dim>
   typename SoftRobotDynamics<dim>::AssemblyResult
   SoftRobotDynamics<dim>::newton_solve(TrilinosWrappers::MPI::Vector &u,
@@ -136,6 +155,22 @@ namespace SoftRobot
                                            mpi_communicator);
     TrilinosWrappers::MPI::Vector trial_residual(residual), update(residual),
       trial(residual);
+
+    // Anderson acceleration of the modified iterations: the differences of
+    // the iterates and of their updates since the matrix last changed, the
+    // last iterate and update, and the accelerated step.
+    const unsigned int depth =
+      modified ? parameters.NonlinearSolver::acceleration_depth : 0;
+    std::deque<TrilinosWrappers::MPI::Vector> iterate_differences,
+      update_differences;
+    TrilinosWrappers::MPI::Vector last_iterate(residual), last_update(residual),
+      accelerated(residual);
+    bool have_last_update = false;
+    const auto forget_history = [&]() {
+      iterate_differences.clear();
+      update_differences.clear();
+      have_last_update = false;
+    };
 
     AssemblyResult assembly = evaluate(u, !modified, residual);
     if (assembly.inverted_point_found)
@@ -175,6 +210,7 @@ namespace SoftRobot
             prepare_linear_solver(system_matrix);
             tangent_is_current = true;
             rebuild_tangent    = false;
+            forget_history();
           }
         else if (!modified)
           prepare_linear_solver(system_matrix);
@@ -184,6 +220,35 @@ namespace SoftRobot
         total_linear_iterations += linear_iterations;
         if (update.linfty_norm() <= 1e-14 * u.linfty_norm())
           break;
+
+        const bool accelerate =
+          (depth > 0) && anderson_step(u,
+                                       update,
+                                       depth,
+                                       have_last_update,
+                                       last_iterate,
+                                       last_update,
+                                       iterate_differences,
+                                       update_differences,
+                                       accelerated);
+        bool accelerated_step_taken = false;
+        if (accelerate)
+          {
+            trial = u;
+            trial += accelerated;
+            assembly   = evaluate(trial, false, trial_residual);
+            const double accelerated_norm = trial_residual.l2_norm();
+            if (!assembly.inverted_point_found &&
+                std::isfinite(accelerated_norm) && accelerated_norm < norm)
+              accelerated_step_taken = true;
+            else
+              {
+                // Not better: forget the history, keep this iterate and
+                // its update as the start of a new one.
+                iterate_differences.clear();
+                update_differences.clear();
+              }
+          }
 
         // Backtracking: the full step is taken if it lowers the residual;
         // otherwise it is halved. Without line search only a state that
@@ -195,7 +260,18 @@ namespace SoftRobot
         const double       old_norm    = norm;
         const unsigned int max_halvings =
           parameters.line_search ? parameters.max_line_search_steps : 0;
-        for (unsigned int halving = 0; halving <= max_halvings; ++halving)
+        if (accelerated_step_taken)
+          {
+            accepted         = true;
+            trial_valid      = true;
+            u                = trial;
+            residual         = trial_residual;
+            norm             = trial_residual.l2_norm();
+            potential_energy = assembly.potential_energy;
+          }
+        for (unsigned int halving = 0;
+             !accelerated_step_taken && halving <= max_halvings;
+             ++halving)
           {
             trial = u;
             trial.add(step_length, update);
@@ -233,6 +309,7 @@ namespace SoftRobot
           pcout << "    Newton " << iterations << ": |r| = " << norm
                 << " (scale " << reference << "), " << linear_iterations
                 << " linear iterations, step length " << step_length
+                << (accelerated_step_taken ? " (accelerated)" : "")
                 << (modified && !tangent_is_current ? ", old tangent" : "")
                 << std::endl;
         if (!accepted && modified && !tangent_is_current)
@@ -259,6 +336,112 @@ namespace SoftRobot
       }
     last_residual = norm;
     return assembly;
+  }
+
+
+
+  // @sect4{SoftRobotDynamics::anderson_step}
+  //
+  // The accelerated step of newton_solve(): records the iterate $\mathbf
+  // u_k$ and its update $\mathbf d_k$, and if there is a history, computes
+  // $\mathbf d_k - \sum_j\gamma_j(\Delta\mathbf u_j + \Delta\mathbf
+  // d_j)$ into `step` and returns true. The least-squares problem for
+  // $\gamma$ is solved through its normal equations, which are at most
+  // `depth` by `depth`: the Cholesky factorization of the Gram matrix of the
+  // $\Delta\mathbf d_j$. When the differences are close to linearly
+  // dependent (a pivot below $10^{-10}$ of its diagonal entry), the oldest
+  // pair is dropped; round-off near convergence would otherwise make the
+  // coefficients meaningless.
+  template <int dim>
+  bool
+  SoftRobotDynamics<dim>::anderson_step(
+    const TrilinosWrappers::MPI::Vector       &iterate,
+    const TrilinosWrappers::MPI::Vector       &update,
+    const unsigned int                         depth,
+    bool                                      &have_last_update,
+    TrilinosWrappers::MPI::Vector             &last_iterate,
+    TrilinosWrappers::MPI::Vector             &last_update,
+    std::deque<TrilinosWrappers::MPI::Vector> &iterate_differences,
+    std::deque<TrilinosWrappers::MPI::Vector> &update_differences,
+    TrilinosWrappers::MPI::Vector             &step) const
+  {
+    if (have_last_update)
+      {
+        iterate_differences.push_back(iterate);
+        iterate_differences.back() -= last_iterate;
+        update_differences.push_back(update);
+        update_differences.back() -= last_update;
+        if (update_differences.size() > depth)
+          {
+            iterate_differences.pop_front();
+            update_differences.pop_front();
+          }
+      }
+    last_iterate     = iterate;
+    last_update      = update;
+    have_last_update = true;
+
+    while (!update_differences.empty())
+      {
+        const unsigned int m = update_differences.size();
+        FullMatrix<double> gram(m, m);
+        Vector<double>     gamma(m);
+        for (unsigned int i = 0; i < m; ++i)
+          {
+            for (unsigned int j = 0; j <= i; ++j)
+              gram(i, j) = update_differences[i] * update_differences[j];
+            gamma(i) = update_differences[i] * update;
+          }
+        // Cholesky factorization G = L L^T in the lower triangle.
+        bool well_conditioned = true;
+        for (unsigned int j = 0; j < m && well_conditioned; ++j)
+          {
+            const double diagonal = gram(j, j);
+            double       pivot    = diagonal;
+            for (unsigned int k = 0; k < j; ++k)
+              pivot -= gram(j, k) * gram(j, k);
+            if (!(pivot > 1e-10 * diagonal))
+              {
+                well_conditioned = false;
+                break;
+              }
+            gram(j, j) = std::sqrt(pivot);
+            for (unsigned int i = j + 1; i < m; ++i)
+              {
+                double value = gram(i, j);
+                for (unsigned int k = 0; k < j; ++k)
+                  value -= gram(i, k) * gram(j, k);
+                gram(i, j) = value / gram(j, j);
+              }
+          }
+        if (!well_conditioned)
+          {
+            iterate_differences.pop_front();
+            update_differences.pop_front();
+            continue;
+          }
+        // Forward and backward substitution.
+        for (unsigned int i = 0; i < m; ++i)
+          {
+            for (unsigned int k = 0; k < i; ++k)
+              gamma(i) -= gram(i, k) * gamma(k);
+            gamma(i) /= gram(i, i);
+          }
+        for (unsigned int i = m; i-- > 0;)
+          {
+            for (unsigned int k = i + 1; k < m; ++k)
+              gamma(i) -= gram(k, i) * gamma(k);
+            gamma(i) /= gram(i, i);
+          }
+        step = update;
+        for (unsigned int j = 0; j < m; ++j)
+          step.add(-gamma(j),
+                   iterate_differences[j],
+                   -gamma(j),
+                   update_differences[j]);
+        return true;
+      }
+    return false;
   }
 
 
@@ -540,6 +723,10 @@ namespace SoftRobot
   {
     TimerOutput::Scope timer_section(computing_timer, "Initial state");
     current.time = 0.;
+    older_stiffness.reset();
+    newer_stiffness.reset();
+    older_stiffness_time = -std::numeric_limits<double>::max();
+    newer_stiffness_time = -std::numeric_limits<double>::max();
     VectorTools::interpolate(*mapping,
                              dof_handler,
                              initial_displacement,
@@ -607,11 +794,24 @@ namespace SoftRobot
   // @sect4{SoftRobotDynamics::prepare_step_tangent}
   //
   // The matrix of the modified Newton method for a step of size dt:
-  // $\mathbf M/(\beta\Delta t^2) + (1+\alpha)(\mathbf K_n + c_v\mathbf
-  // C_n)$, with the stiffness and damping matrices of the last converged
-  // state $\mathbf u_n$ (assembled at the end of the previous step). After
-  // a failed step the system matrix holds something else, and the
-  // stiffness of $\mathbf u_n$ is assembled again.
+  // $\mathbf M/(\beta\Delta t^2) + (1+\alpha)(\tilde{\mathbf K} + c_v
+  // \mathbf C_n)$, with the damping matrix of the last converged state
+  // $\mathbf u_n$ and a stiffness $\tilde{\mathbf K}$ from the stiffness
+  // matrices of the converged states (assembled at the end of the previous
+  // step; after a failed step the system matrix holds something else, and
+  // the stiffness of $\mathbf u_n$ is assembled again).
+  //
+  // The iterations converge at a rate set by how far $\tilde{\mathbf K}$
+  // is from the stiffness at the end of the step, $\mathbf K_{n+1}$, which
+  // they do not know. $\tilde{\mathbf K} = \mathbf K_n$ is off by
+  // $O(\Delta t)$; the linear extrapolation from the last two states,
+  // $\tilde{\mathbf K} = \mathbf K_n + \theta(\mathbf K_n - \mathbf
+  // K_{n-1})$ with $\theta = \Delta t_{n+1}/\Delta t_n$, is off by
+  // $O(\Delta t^2)$ for a smooth motion (parameter `Tangent
+  // extrapolation`, on by default). The two matrices are kept as copies,
+  // $\mathbf K_n$ recorded the first time a step starts from $\mathbf u_n$,
+  // so that a step repeated after a cut back extrapolates from the same
+  // pair. The residual is not changed, and with it the converged answer.
   template <int dim>
   void
   SoftRobotDynamics<dim>::prepare_step_tangent(const double dt)
@@ -621,6 +821,25 @@ namespace SoftRobot
         TrilinosWrappers::MPI::Vector force(locally_owned_dofs,
                                             mpi_communicator);
         assemble_internal_force(previous.u, true, force, false);
+      }
+    if (parameters.tangent_extrapolation)
+      {
+        if (newer_stiffness_time != previous.time)
+          {
+            std::swap(older_stiffness, newer_stiffness);
+            std::swap(older_stiffness_time, newer_stiffness_time);
+            if (!newer_stiffness)
+              newer_stiffness =
+                std::make_unique<TrilinosWrappers::SparseMatrix>();
+            newer_stiffness->copy_from(system_matrix);
+            newer_stiffness_time = previous.time;
+          }
+        if (older_stiffness && older_stiffness_time < previous.time)
+          {
+            const double theta = dt / (previous.time - older_stiffness_time);
+            system_matrix *= 1. + theta;
+            system_matrix.add(-theta, *older_stiffness);
+          }
       }
     const double w = stepper.new_force_weight();
     system_matrix *= w;
