@@ -202,6 +202,16 @@ namespace SoftRobot
     {
       return current.u;
     }
+    const TrilinosWrappers::MPI::Vector &
+    velocity() const
+    {
+      return current.v;
+    }
+    const TrilinosWrappers::MPI::Vector &
+    acceleration() const
+    {
+      return current.a;
+    }
     // Mean displacement and velocity of the tip region (see Output/Tip
     // region), and the energies of the current state.
     std::pair<Tensor<1, dim>, Tensor<1, dim>>
@@ -540,6 +550,10 @@ namespace SoftRobot
     std::vector<std::vector<double>> rigid_body_modes;
 
     EnergyAccount energy;
+    // The HHT damping and traction forces of the last step's equation of
+    // motion (see update_energies()).
+    TrilinosWrappers::MPI::Vector hht_damping_force;
+    TrilinosWrappers::MPI::Vector hht_traction_force;
     double        initial_total_energy = 0.;
 
     double       time_step;

@@ -748,6 +748,11 @@ namespace SoftRobot
     energy.gravity_potential   = -(gravity_force * current.u);
     energy.traction_work       = 0.;
     energy.damping_dissipation = 0.;
+    // The forces of the equation at t = 0, the first terms of the work and
+    // dissipation sums (see update_energies()).
+    hht_damping_force  = current.damping_force;
+    hht_traction_force = current.external_force;
+    hht_traction_force -= gravity_force;
     initial_total_energy =
       energy.kinetic + energy.strain + energy.gravity_potential;
     step_number = 0;
@@ -855,28 +860,55 @@ namespace SoftRobot
   // @sect4{SoftRobotDynamics::update_energies}
   //
   // The energy balance of the step. Kinetic, strain and gravitational
-  // energy are state functions; the work of the tractions and the energy
-  // dissipated by the damping forces are accumulated with the
-  // trapezoidal rule over the displacement increment. Whatever is left in
-  // the balance is the algorithmic dissipation of the HHT scheme (and the
-  // error of the trapezoidal accumulation).
+  // energy are state functions. The work of the tractions and the energy
+  // dissipated by the damping forces are accumulated over the displacement
+  // increments, with the forces the scheme actually applied. Step $k$'s
+  // equation of motion is $\mathbf M\mathbf a_k + \tilde{\mathbf F}_k = 0$
+  // with the HHT forces $\tilde{\mathbf F}_k = (1+\alpha)\mathbf F_k -
+  // \alpha\mathbf F_{k-1}$ (and $\tilde{\mathbf F}_0 = \mathbf F_0$, the
+  // equation at $t = 0$). The mean of the equations at both ends of a step,
+  // times the increment $\Delta\mathbf u$, is an exact identity:
+  // @f[
+  //   \Delta\mathbf u\cdot\mathbf M\tfrac12(\mathbf a_n + \mathbf a_{n+1})
+  //   + \Delta\mathbf u\cdot\tfrac12(\tilde{\mathbf f}_{\text{int},n} +
+  //   \tilde{\mathbf f}_{\text{int},n+1}) + \Delta D - \Delta W = 0,
+  // @f]
+  // with the damping and traction parts booked as $\Delta D = \Delta\mathbf
+  // u\cdot\tfrac12(\tilde{\mathbf f}_{\text{d},n} + \tilde{\mathbf
+  // f}_{\text{d},n+1})$ and $\Delta W$ alike. What the balance $\mathcal B
+  // = T + \Pi + V_g - W + D - (T + \Pi + V_g)_0$ then collects is $\Delta
+  // T - \Delta\mathbf u\cdot\mathbf M\tfrac12(\mathbf a_n + \mathbf
+  // a_{n+1})$ and $\Delta\Pi - \Delta\mathbf u\cdot\tfrac12(\tilde{\mathbf
+  // f}_{\text{int},n} + \tilde{\mathbf f}_{\text{int},n+1})$ summed over the
+  // steps: the algorithmic dissipation of the scheme, from its Newmark
+  // parameters and from the shifted internal force, and nothing else. For
+  // $\alpha = 0$ the weights are the trapezoidal rule's, and for the
+  // trapezoidal rule on a linear problem both parts vanish. (Gravity is
+  // constant; its work is the change of $V_g$ exactly.)
   template <int dim>
   void
   SoftRobotDynamics<dim>::update_energies(const AssemblyResult &assembly)
   {
     TrilinosWrappers::MPI::Vector increment(current.u);
     increment -= previous.u;
-    TrilinosWrappers::MPI::Vector traction_sum(current.external_force);
-    traction_sum += previous.external_force;
-    traction_sum.add(-2., gravity_force);
-    TrilinosWrappers::MPI::Vector damping_sum(current.damping_force);
-    damping_sum += previous.damping_force;
+    // This step's HHT forces: damping (with this step's matrix, as in the
+    // residual) and tractions (the external forces less gravity).
+    const double                  w = stepper.new_force_weight();
+    TrilinosWrappers::MPI::Vector damping_force(current.damping_force);
+    damping_force.sadd(w, 1. - w, previous.damping_force);
+    TrilinosWrappers::MPI::Vector traction_force(current.external_force);
+    traction_force.sadd(w, 1. - w, previous.external_force);
+    traction_force -= gravity_force;
 
     energy.kinetic           = 0.5 * mass.matrix_norm_square(current.v);
     energy.strain            = assembly.strain_energy;
     energy.gravity_potential = -(gravity_force * current.u);
-    energy.traction_work += 0.5 * (traction_sum * increment);
-    energy.damping_dissipation += 0.5 * (damping_sum * increment);
+    energy.traction_work +=
+      0.5 * (increment * traction_force + increment * hht_traction_force);
+    energy.damping_dissipation +=
+      0.5 * (increment * damping_force + increment * hht_damping_force);
+    hht_damping_force  = damping_force;
+    hht_traction_force = traction_force;
   }
 
 
