@@ -104,9 +104,14 @@ case "${1:-}" in
         echo "FAILED: $scene (see output/$name/run.log)" >&2
         return 1
       fi
-      milliseconds=$((($(date +%s%N) - start) / 1000000))
+      local end
+      end=$(date +%s%N)
+      milliseconds=$(((end - start) / 1000000))
       printf '%d.%03d\n' $((milliseconds / 1000)) $((milliseconds % 1000)) \
         > "output/$name/wall_seconds"
+      # start and end, for the wall time of the whole set
+      printf '%d.%09d %d.%09d\n' $((start / 1000000000)) $((start % 1000000000)) \
+        $((end / 1000000000)) $((end % 1000000000)) > "output/$name/wall_interval"
       echo "$name: $(cat "output/$name/wall_seconds") s"
     }
     export -f run_scene

@@ -232,6 +232,19 @@ def read_wall_seconds(path):
         raise ReportError("%s: expected one number, found '%s'" % (path, text))
 
 
+def read_wall_interval(path):
+    """Start and end of the run (seconds since the epoch), if recorded."""
+    if not path.is_file():
+        return None
+    values = path.read_text().split()
+    try:
+        start, end = (float(value) for value in values)
+    except ValueError:
+        raise ReportError("%s: expected two numbers, found '%s'"
+                          % (path, " ".join(values)))
+    return start, end
+
+
 def read_scene(output_dir, scene):
     """All outputs of one scene, checked for consistency with its model."""
     directory = Path(output_dir) / scene["name"]
@@ -278,7 +291,8 @@ def read_scene(output_dir, scene):
                                       directory / "run.log", log["steps"]))
     return dict(scene, trajectory=trajectory, spectrum=spectrum,
                 frequencies=frequencies, magnitudes=magnitudes, log=log,
-                wall=read_wall_seconds(directory / "wall_seconds"))
+                wall=read_wall_seconds(directory / "wall_seconds"),
+                interval=read_wall_interval(directory / "wall_interval"))
 
 
 # @sect{Number formatting}
@@ -511,7 +525,22 @@ def runs_table(runs):
             + ["", "Total wall time of the %d scenes: %s s (%.2f h); of the "
                "%d 3D scenes alone: %s s (%.2f h)."
                % (len(runs), number(total, 1), total / 3600., len(three_d),
-                  number(total_3d, 1), total_3d / 3600.), ""])
+                  number(total_3d, 1), total_3d / 3600.)]
+            + elapsed_line(runs) + [""])
+
+
+def elapsed_line(runs):
+    """The wall time of the whole set, from the first start to the last
+    end, when every run recorded its interval."""
+    intervals = [run.get("interval") for run in runs]
+    if not intervals or any(interval is None for interval in intervals):
+        return []
+    elapsed = (max(end for _, end in intervals)
+               - min(start for start, _ in intervals))
+    return ["The whole set, %s scenes at a time, took %s s (%.1f min) from "
+            "the first start to the last end."
+            % (os.environ.get("SOFT_ROBOT_JOBS", "2"), number(elapsed, 1),
+               elapsed / 60.)]
 
 
 def warnings_table(runs):
