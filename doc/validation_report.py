@@ -204,7 +204,8 @@ def read_run_log(path):
         "dofs": r"^Degrees of freedom: (\d+) \((.*), (\d+) MPI "
                 r"process\(es\)\)",
         "finished": r"^Finished (\d+) steps in ([0-9.eE+-]+) s: (\d+) Newton "
-                    r"iterations, (\d+) linear iterations, (\d+) time-step "
+                    r"iterations, (\d+) linear iterations, (?:\d+ matrix "
+                    r"factorizations or multigrid set-ups, )?(\d+) time-step "
                     r"cutbacks\."}
     found = {}
     for key, pattern in patterns.items():

@@ -23,10 +23,10 @@ The energy balance. The trajectory's column `energy_balance` is
     B(t) = K + S + G - W_traction + D_damping - (K + S + G)(0)
 
 (kinetic, strain and gravitational energy, the work of the tractions and the
-energy taken by the damping, the last two accumulated with the trapezoidal
-rule; see EnergyAccount in include/core/soft_robot_dynamics.h). Without
-errors B = 0; B < 0 is energy the time integrator removed (the algorithmic
-dissipation of HHT with alpha < 0), B > 0 energy it created. The report
+energy taken by the damping, the last two accumulated with the forces of
+HHT's equations of motion; see SoftRobotDynamics::update_energies). B is
+then the algorithmic dissipation of the scheme: B < 0 is energy the time
+integrator removed (HHT with alpha < 0), B > 0 energy it created. The report
 normalises B by the energy scale of the run,
 
     E_ref = max over t of ( K(t) + S(t) + |G(t) - G(0)| ),
@@ -594,8 +594,10 @@ def write_report(path, results, m, session):
         "**Energy balance.** The trajectory's `energy_balance` is B = K + S + G − W + D − "
         "(K + S + G)(0): kinetic, strain and gravitational energy, minus the work of the "
         "tractions, plus the energy taken by the damping (both accumulated with the "
-        "trapezoidal rule). B < 0 is energy that the time integrator removed (the "
-        "algorithmic dissipation of HHT with α < 0), B > 0 energy it created. It is "
+        "forces of HHT's equations of motion, the mean of the two at the ends of each "
+        "step, so that B is the scheme's algorithmic dissipation and nothing else; "
+        "`doc/introduction.md`). B < 0 is energy that the time integrator removed (HHT "
+        "with α < 0), B > 0 energy it created. It is "
         "normalised by E_ref = max over t of (K + S + |G − G(0)|), the largest energy "
         "stored in the body during the run. \"max |B|/E_ref\" is the drift, \"B end\" the "
         "signed value at the last step. Newton/step counts the iterations of the "
@@ -626,8 +628,9 @@ def write_report(path, results, m, session):
 
     lines.append("## Energies, time steps and deformation\n")
     lines.append("Energies in kg mm²/s² = µJ (of the modelled part of the body: a quarter "
-                 "of it in 3D). \"largest gain\" is the largest positive B; \"B after step 1\" shows the "
-                 "accounting of a load released at t = 0 (see the discussion). dt min is the "
+                 "of it in 3D). \"largest gain\" is the largest positive B; \"B after step 1\" is the "
+                 "balance after the first step, in which a load released at t = 0 still "
+                 "acts with the weight −α (see the discussion). dt min is the "
                  "smallest step that converged; the stretch columns come from the VTU "
                  "series (largest and smallest principal stretch of any silicone cell at "
                  "any output time, smallest J of any cell), where one was written. The tip "
