@@ -179,6 +179,7 @@ namespace SoftRobot
         std::to_string(assembly.min_jacobian) + ")");
     double norm      = residual.l2_norm();
     double reference = std::max({force_scale, norm, assembly.force_scale});
+    const double initial_force_scale = reference;
     double potential_energy = assembly.potential_energy;
     // In the modified variant: whether the prepared matrix is the tangent
     // at the current iterate, and whether it must become so.
@@ -190,6 +191,16 @@ namespace SoftRobot
       {
         if (!std::isfinite(norm))
           throw StepFailure("the residual is not finite");
+        // The force scale follows the iterates, but an iterate whose forces
+        // are a thousand times those the step started from is not a state
+        // the step can reach: the iteration has run away (in the undamped
+        // release of the stability study, into a state with 1e16 times the
+        // strain energy, where any residual passed the relative test).
+        if (assembly.force_scale > 1e3 * initial_force_scale)
+          throw StepFailure("the iteration ran away (forces " +
+                            std::to_string(assembly.force_scale) +
+                            " against " + std::to_string(initial_force_scale) +
+                            " at its start)");
         reference = std::max(reference, assembly.force_scale);
         if (norm <= parameters.absolute_tolerance ||
             norm <= parameters.NonlinearSolver::relative_tolerance * reference)
