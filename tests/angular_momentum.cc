@@ -26,9 +26,6 @@ template <typename T>
 class AngularMomentumTest : public ::testing::Test
 {
 };
-using Dimensions = ::testing::Types<std::integral_constant<int, 1>,
-                                    std::integral_constant<int, 2>,
-                                    std::integral_constant<int, 3>>;
 TYPED_TEST_SUITE(AngularMomentumTest, Dimensions);
 
 TYPED_TEST(AngularMomentumTest, RigidRotationOfABox)

@@ -36,9 +36,6 @@ template <typename T>
 class EnergyBalanceTest : public ::testing::Test
 {
 };
-using Dimensions = ::testing::Types<std::integral_constant<int, 1>,
-                                    std::integral_constant<int, 2>,
-                                    std::integral_constant<int, 3>>;
 TYPED_TEST_SUITE(EnergyBalanceTest, Dimensions);
 
 TYPED_TEST(EnergyBalanceTest, RemainderIsTheAlgorithmicDissipation)

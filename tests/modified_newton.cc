@@ -26,9 +26,6 @@ template <typename T>
 class ModifiedNewtonTest : public ::testing::Test
 {
 };
-using Dimensions = ::testing::Types<std::integral_constant<int, 1>,
-                                    std::integral_constant<int, 2>,
-                                    std::integral_constant<int, 3>>;
 TYPED_TEST_SUITE(ModifiedNewtonTest, Dimensions);
 
 namespace

@@ -6,11 +6,17 @@
 
 #include <core/soft_robot_dynamics.h>
 #include <deal.II/lac/lapack_full_matrix.h>
+#include <gtest/gtest.h>
 #include <sstream>
 #include <string>
 
 namespace SoftRobot::Testing
 {
+  // The dimensions the typed tests run in.
+  using Dimensions = ::testing::Types<std::integral_constant<int, 1>,
+                                      std::integral_constant<int, 2>,
+                                      std::integral_constant<int, 3>>;
+
   // The parameter text of a small body: everything the tests do not set
   // explicitly has the program's default. `sections` is appended verbatim.
   inline std::string
