@@ -51,20 +51,8 @@ TYPED_TEST(EnergyBalanceTest, RemainderIsTheAlgorithmicDissipation)
                                    "(t < 3*T) ? 1 : 0",
                                    "-0.5*sin(2*t/T)"};
   std::ostringstream sections;
-  sections << "subsection Geometry\n"
-              "  set Generator = subdivided_hyper_rectangle\n"
-              "  set Generator arguments = "
-           << box_arguments(dim, 6, 1, L, 2.) << "\nend\n"
-           << "subsection Finite element\n  set Polynomial degree = 2\nend\n"
-           << "subsection Material 1\n  set Name = bar\n"
-           << "  set Shear modulus = " << mu
-           << "\n  set Bulk modulus = " << 20. * mu
-           << "\n  set Density = " << rho
-           << "\n  set Damping coefficient = " << 0.02 * T << "\nend\n"
-           << "subsection Loads and constraints\n"
-              "  set Fixed components = 0: "
-           << std::string("xyz").substr(0, dim)
-           << "\n  set Traction boundary ids = 1\n  set Traction = ";
+  sections << clamped_bar_sections(dim, mu, rho, L, 0.02 * T)
+           << "  set Traction boundary ids = 1\n  set Traction = ";
   for (unsigned int d = 0; d < dim; ++d)
     sections << (d > 0 ? "; " : "") << traction[d];
   sections << "\n  set Function constants = c=" << c << ", L=" << L

@@ -48,20 +48,8 @@ namespace
                                      "0.3*c*(x/L)^2",
                                      "-0.2*c*(x/L)^2"};
     std::ostringstream sections;
-    sections << "subsection Geometry\n"
-                "  set Generator = subdivided_hyper_rectangle\n"
-                "  set Generator arguments = "
-             << box_arguments(dim, 6, 1, L, 2.) << "\nend\n"
-             << "subsection Finite element\n  set Polynomial degree = 2\nend\n"
-             << "subsection Material 1\n  set Name = bar\n"
-             << "  set Shear modulus = " << mu
-             << "\n  set Bulk modulus = " << 20. * mu
-             << "\n  set Density = " << rho
-             << "\n  set Damping coefficient = " << 2e-3 * L / c << "\nend\n"
-             << "subsection Loads and constraints\n"
-                "  set Fixed components = 0: "
-             << std::string("xyz").substr(0, dim)
-             << "\n  set Function constants = c=" << c << ", L=" << L
+    sections << clamped_bar_sections(dim, mu, rho, L, 2e-3 * L / c)
+             << "  set Function constants = c=" << c << ", L=" << L
              << "\nend\n"
              << "subsection Initial conditions\n  set Velocity = ";
     for (unsigned int d = 0; d < dim; ++d)

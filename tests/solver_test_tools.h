@@ -101,6 +101,33 @@ namespace SoftRobot::Testing
       }
     return 0.5 * (low + high);
   }
+  // A bar of length L and width 2 in 6 quadratic cells, of one
+  // neo-Hookean material (kappa = 20 mu) with the damping coefficient
+  // zeta, clamped at x = 0: the Geometry, Finite element and Material 1
+  // subsections and the first entry of Loads and constraints, which the
+  // caller continues and closes.
+  inline std::string
+  clamped_bar_sections(const unsigned int dim,
+                       const double       mu,
+                       const double       rho,
+                       const double       L,
+                       const double       zeta)
+  {
+    std::ostringstream text;
+    text << "subsection Geometry\n"
+            "  set Generator = subdivided_hyper_rectangle\n"
+            "  set Generator arguments = "
+         << box_arguments(dim, 6, 1, L, 2.) << "\nend\n"
+         << "subsection Finite element\n  set Polynomial degree = 2\nend\n"
+         << "subsection Material 1\n  set Name = bar\n"
+         << "  set Shear modulus = " << mu
+         << "\n  set Bulk modulus = " << 20. * mu << "\n  set Density = " << rho
+         << "\n  set Damping coefficient = " << zeta << "\nend\n"
+         << "subsection Loads and constraints\n"
+            "  set Fixed components = 0: "
+         << std::string("xyz").substr(0, dim) << "\n";
+    return text.str();
+  }
 } // namespace SoftRobot::Testing
 
 #endif
