@@ -78,6 +78,10 @@ def study_main(description, script, output, report, cases, run_case, load_case,
         for name in selected:
             run_case(build, output_root, name, arguments.timeout, arguments.threads)
         run["total_seconds"] = time.perf_counter() - start
+        # Read again: another session of the same study may have finished
+        # meanwhile (two studies on the two cores).
+        session = (json.loads(session_path.read_text()) if session_path.exists()
+                   else {"runs": []})
         session["runs"] = (session["runs"] if arguments.cases else []) + [run]
         session_path.write_text(json.dumps(session, indent=1) + "\n")
     results = [r for r in (load_case(output_root, name) for name in cases) if r]

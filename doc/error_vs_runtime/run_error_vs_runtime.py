@@ -165,6 +165,18 @@ for scene, experiment in ((SCENE_PLANAR_3D, "planar"), (SCENE_SPHERICAL_3D, "sph
     for dt in (0.02, 0.005, 0.0025):
         CASES.append((f"{experiment}_p1_coarse_dt{dt:g}", "3D", "3D P1 coarse, dt series",
                       f"P1 coarse, dt = {dt:g}", scene, dt_entry(dt), dt, "run"))
+    # The reference discretisation's own time-step series.
+    for dt in (0.02, 0.005):
+        CASES.append((f"{experiment}_p2md_coarse_dt{dt:g}", "3D",
+                      "3D P2 mean dilatation coarse, dt series",
+                      f"P2 mean dilatation coarse, dt = {dt:g}", scene,
+                      P2 + MD + dt_entry(dt), dt, "run"))
+# The planar pendulum's reference discretisation on the medium half mesh
+# (about an hour on one core).
+CASES.append(("planar_p2md_medium_dt0.01", "3D", "3D P2 mean dilatation",
+              "P2 mean dilatation medium, dt = 0.01", SCENE_PLANAR_3D,
+              P2 + MD + ["Geometry/Mesh file=../../meshes/bellows_half_medium.msh"],
+              0.01, "run"))
 for degree, refinements, dt in ((1, 0, 0.01), (2, 0, 0.02), (2, 0, 0.01), (2, 0, 0.005),
                                 (2, 0, 0.0025), (2, 0, 0.00125), (2, 1, 0.01)):
     CASES.append((f"planar_2d_p{degree}_r{refinements}_dt{dt:g}", "2D",
