@@ -38,10 +38,12 @@ namespace
   };
 
   // The tip displacement after every step, for the given entries of the
-  // subsection "Nonlinear solver".
+  // subsections "Nonlinear solver" and "Linear solver".
   template <int dim>
   Run
-  swing(const std::string &nonlinear_solver)
+  swing(const std::string &nonlinear_solver,
+        const std::string &direct_solver = "KLU",
+        const double       end_time_in_wave_times = 8.)
   {
     const double mu = 10., rho = 1e-6, L = 10., c = std::sqrt(3. * mu / rho);
     const std::string velocity[3] = {dim == 1 ? "0.4*c*x/L" : "0.15*c*x/L",
@@ -57,11 +59,13 @@ namespace
     sections << "\nend\n"
              << "subsection Time integration\n  set Alpha = -0.1\n"
              << "  set Time step = " << 0.1 * L / c
-             << "\n  set End time = " << 8. * L / c << "\nend\n"
+             << "\n  set End time = " << end_time_in_wave_times * L / c
+             << "\nend\n"
              << "subsection Nonlinear solver\n  set Absolute tolerance = 0\n"
                 "  set Relative tolerance = 1e-11\n"
              << nonlinear_solver << "end\n"
-             << "subsection Linear solver\n  set Solver = Direct\nend\n";
+             << "subsection Linear solver\n  set Solver = Direct\n"
+             << "  set Direct solver = " << direct_solver << "\nend\n";
     Parameters::AllParameters parameters;
     parameters.read_string(parameter_text(dim, sections.str()));
     SoftRobotDynamics<dim> body(parameters, MPI_COMM_WORLD);
@@ -142,4 +146,20 @@ TYPED_TEST(ModifiedNewtonTest, AccelerationKeepsTheMotionAndSavesIterations)
   // separately.)
   EXPECT_LT(accelerated.newton_iterations, plain.newton_iterations);
   EXPECT_LE(accelerated.factorizations, plain.factorizations);
+}
+
+
+// The two sparse direct solvers factorize the same matrices, so the motion
+// must be the same to the tolerance of the Newton iterations.
+TYPED_TEST(ModifiedNewtonTest, MumpsGivesTheMotionOfKlu)
+{
+  constexpr int dim   = TypeParam::value;
+  const Run     klu   = swing<dim>("", "KLU", 2.);
+  const Run     mumps = swing<dim>("", "MUMPS", 2.);
+  std::cout << dim << "D: KLU " << klu.newton_iterations << " Newton iterations ("
+            << klu.factorizations << " factorizations), MUMPS "
+            << mumps.newton_iterations << " (" << mumps.factorizations
+            << "); difference " << difference(klu, mumps) << std::endl;
+  EXPECT_GT(klu.tip.size(), 10u);
+  EXPECT_LT(difference(klu, mumps), 1e-9);
 }

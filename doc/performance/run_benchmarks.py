@@ -36,6 +36,13 @@ REPOSITORY = Path(__file__).resolve().parents[2]
 HEADLINE = "parameters/bellows/vertical_ds20_3d.prm"
 QUIET = ["Output/Progress interval=0"]
 
+# The solvers of the refinement series: the prefix of the case name, the
+# overrides and what the description adds.
+SERIES_SOLVER = {"": ([], ""),
+                 "mumps_": (["Linear solver/Direct solver=MUMPS"],
+                            ", direct solver MUMPS instead of KLU"),
+                 "amg_": (["Linear solver/Solver=CG"], ", CG with algebraic multigrid")}
+
 # name, scene, overrides, MPI processes, description
 CASES = [
     ("headline", HEADLINE, [], 1,
@@ -58,10 +65,9 @@ CASES = [
     (f"{prefix}quarter_{level}_window", HEADLINE,
      [f"Geometry/Mesh file=../../meshes/bellows_quarter_{level}.msh",
       "Time integration/End time=0.5", "Output/Spectral analysis=false"]
-     + ([] if prefix == "" else ["Linear solver/Solver=CG"]), 1,
-     f"{level} quarter mesh, first 0.5 s"
-     + ("" if prefix == "" else ", CG with algebraic multigrid"))
-    for prefix in ("", "amg_") for level in ("coarse", "medium", "fine", "extrafine")
+     + SERIES_SOLVER[prefix][0], 1,
+     f"{level} quarter mesh, first 0.5 s{SERIES_SOLVER[prefix][1]}")
+    for prefix in SERIES_SOLVER for level in ("coarse", "medium", "fine", "extrafine")
 ] + [
     ("quarter_refined_window", HEADLINE,
      ["Geometry/Global refinements=1",
@@ -324,33 +330,36 @@ def write_report(path, results, calculix, run):
                      "assemblies, the solver set-ups and the solves divided by "
                      "the number of Newton iterations, and the exponent p of "
                      "t ~ N^p between neighbouring meshes; with the sparse "
-                     "direct solver (KLU) and with CG preconditioned by ML's "
+                     "direct solvers KLU and MUMPS and with CG preconditioned by ML's "
                      "algebraic multigrid (rigid-body modes as its near null "
                      "space, 2 Chebyshev sweeps, relative tolerance 1e-8).\n")
-        lines.append("| mesh | dofs | direct: ms per Newton iteration | exponent "
+        lines.append("| mesh | dofs | KLU: ms per Newton iteration | exponent "
+                     "| MUMPS: ms per Newton iteration | exponent "
                      "| AMG: ms per Newton iteration | exponent | CG iterations per solve |")
-        lines.append("|---|---:|---:|---:|---:|---:|---:|")
+        lines.append("|---|---:|---:|---:|---:|---:|---:|---:|---:|")
         previous = None
         for level in levels:
-            direct = by_name[f"quarter_{level}_window"]
-            amg = by_name.get(f"amg_quarter_{level}_window")
-            dofs = direct["dofs"]
-            now = (dofs, per_iteration(direct), per_iteration(amg) if amg else None)
-            exponents = ["–", "–"]
-            if previous:
-                for k in (1, 2):
-                    if now[k] and previous[k]:
-                        p = math.log(now[k] / previous[k]) / math.log(dofs / previous[0])
-                        exponents[k - 1] = f"{p:.2f}"
-            amg_cells = ("– | – | –" if not amg else
-                         f"{now[2]:.1f} | {exponents[1]} | "
-                         f"{amg['linear_iterations'] / max(amg['newton_iterations'], 1):.0f}")
-            lines.append(f"| {level} | {dofs} | {now[1]:.2f} | {exponents[0]} | {amg_cells} |")
+            runs = [by_name.get(f"{prefix}quarter_{level}_window")
+                    for prefix in ("", "mumps_", "amg_")]
+            dofs = runs[0]["dofs"]
+            now = [dofs] + [per_iteration(r) if r else None for r in runs]
+            cells = []
+            for k in (1, 2, 3):
+                exponent = "–"
+                if previous and now[k] and previous[k]:
+                    p = math.log(now[k] / previous[k]) / math.log(dofs / previous[0])
+                    exponent = f"{p:.2f}"
+                cells.append("– | –" if now[k] is None else
+                             f"{now[k]:.{2 if k < 3 else 1}f} | {exponent}")
+            amg = runs[2]
+            iterations = ("–" if not amg else
+                          f"{amg['linear_iterations'] / max(amg['newton_iterations'], 1):.0f}")
+            lines.append(f"| {level} | {dofs} | {' | '.join(cells)} | {iterations} |")
             previous = now
         if "quarter_refined_window" in by_name:
             refined = by_name["quarter_refined_window"]
             lines.append(f"| coarse refined once | {refined['dofs']} "
-                         f"| {per_iteration(refined):.2f} | | | | |")
+                         f"| {per_iteration(refined):.2f} | | | | | | |")
         lines.append("")
     ratios = [(ratio, by_name[name]) for ratio, name in
               ((2, "amg_quarter_medium_kappa2"), (10, "amg_quarter_medium_kappa10"),

@@ -208,6 +208,7 @@ namespace SoftRobot
     struct LinearSolver
     {
       std::string  type;
+      std::string  direct_solver;
       double       relative_tolerance;
       unsigned int max_iterations;
       unsigned int smoother_sweeps;

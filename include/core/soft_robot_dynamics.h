@@ -535,9 +535,9 @@ namespace SoftRobot
       newer_stiffness;
     double older_stiffness_time = -std::numeric_limits<double>::max();
     double newer_stiffness_time = -std::numeric_limits<double>::max();
-    // The prepared linear solver: the sparse factorization (Amesos KLU,
-    // whose symbolic analysis of the sparsity pattern is done once per
-    // matrix object) or the multigrid hierarchy.
+    // The prepared linear solver: the sparse factorization (Amesos KLU or
+    // MUMPS, whose symbolic analysis of the sparsity pattern is done once
+    // per matrix object) or the multigrid hierarchy.
     std::unique_ptr<Epetra_LinearProblem>              direct_problem;
     std::unique_ptr<Amesos_BaseSolver>                 direct_factorization;
     const void                                        *analysed_matrix = nullptr;

@@ -464,8 +464,8 @@ namespace SoftRobot
   // comes from higher-order elements; its coarse spaces are built from the
   // rigid-body modes computed in setup_system(), passed through ML's own
   // parameter list because deal.II's interface takes only constant modes.
-  // The sparse direct solver (Amesos KLU) is there for small problems and
-  // as a check. Preparing -- the factorization, or the multigrid hierarchy
+  // The sparse direct solvers (Amesos KLU, or MUMPS for larger problems)
+  // are there for problems of up to some 10^5 unknowns and as a check. Preparing -- the factorization, or the multigrid hierarchy
   // -- is separate from solving, so that the modified Newton method pays
   // for it once per step.
   template <int dim>
@@ -491,7 +491,7 @@ namespace SoftRobot
     if (parameters.LinearSolver::type == "Direct")
       {
         // The fill-reducing ordering depends only on the sparsity pattern,
-        // which never changes: KLU's symbolic analysis is done once per
+        // which never changes: the symbolic analysis is done once per
         // matrix object, the numerical factorization for every new matrix.
         // (deal.II's SolverDirect repeats both every time, and it hands out
         // the Epetra matrix as const only, which the factorization reads.)
@@ -502,13 +502,20 @@ namespace SoftRobot
           {
             direct_problem = std::make_unique<Epetra_LinearProblem>();
             direct_problem->SetOperator(&epetra_matrix);
+            const std::string package =
+              "Amesos_" + std::string(parameters.direct_solver == "MUMPS" ?
+                                        "Mumps" :
+                                        "Klu");
             Amesos factory;
             direct_factorization.reset(
-              factory.Create("Amesos_Klu", *direct_problem));
+              factory.Create(package.c_str(), *direct_problem));
             AssertThrow(direct_factorization != nullptr,
-                        ExcMessage("Trilinos has no Amesos KLU solver."));
+                        ExcMessage("Trilinos has no " + package +
+                                   " solver (Linear solver/Direct solver = " +
+                                   parameters.direct_solver + ")."));
             AssertThrow(direct_factorization->SymbolicFactorization() == 0,
-                        ExcMessage("KLU's symbolic factorization failed."));
+                        ExcMessage(package +
+                                   ": the symbolic factorization failed."));
             analysed_matrix = &epetra_matrix;
           }
         if (direct_factorization->NumericFactorization() != 0)
@@ -564,7 +571,7 @@ namespace SoftRobot
             direct_problem->SetRHS(const_cast<Epetra_MultiVector *>(
               &rhs.trilinos_vector()));
             AssertThrow(direct_factorization->Solve() == 0,
-                        ExcMessage("KLU's triangular solves failed."));
+                        ExcMessage("The direct solver's triangular solves failed."));
           }
         else
           {
