@@ -321,6 +321,14 @@ def load_case(output_root, name):
     if (source / "tip_spectrum.csv").exists():
         result["spectrum"] = read_spectrum(
             source, "vertical" if experiment_of(name) == "1" else "horizontal")
+    # So is the trajectory: results stored by earlier versions of this
+    # script kept u_x only.
+    if (source / "tip_trajectory.csv").exists():
+        d, _ = read_trajectory(source / "tip_trajectory.csv")
+        result["t"] = d["t"].tolist()
+        for component in ("u_x", "u_y", "u_z"):
+            if component in d:
+                result[component] = d[component].tolist()
     return result
 
 
