@@ -408,8 +408,10 @@ def family_points(results, errors, measure, reference):
 
 def plot_work_precision(results, errors, path, title, reference):
     figure, axes = plt.subplots(1, 3, figsize=(16, 5.2))
+    trajectory = ("tip trajectory u_x(t)" if experiment_of(reference) == "1"
+                  else "tip displacement u(t)")
     for ax, measure, name in zip(axes, ("frequency", "damping", "trajectory"),
-                                 ("tip frequency", "damping ratio ξ", "tip trajectory u_x(t)")):
+                                 ("tip frequency", "damping ratio ξ", trajectory)):
         for family, points in family_points(results, errors, measure, reference).items():
             color, style = FAMILY_STYLE.get(family, ("k", "-o"))
             walls = [p[0] for p in points]
