@@ -654,7 +654,7 @@ namespace SoftRobot
                         Patterns::Selection("KLU|MUMPS"),
                         "The sparse direct solver of `Solver = Direct`, "
                         "through Trilinos Amesos: KLU (left-looking, the "
-                        "fastest below about 15,000 unknowns) or MUMPS "
+                        "faster one below about 8,000 unknowns) or MUMPS "
                         "(multifrontal; twice as fast as KLU at 35,000 "
                         "unknowns, with less memory).");
       prm.declare_entry("Relative tolerance",

@@ -465,9 +465,10 @@ namespace SoftRobot
   // rigid-body modes computed in setup_system(), passed through ML's own
   // parameter list because deal.II's interface takes only constant modes.
   // The sparse direct solvers (Amesos KLU, or MUMPS for larger problems)
-  // are there for problems of up to some 10^5 unknowns and as a check. Preparing -- the factorization, or the multigrid hierarchy
-  // -- is separate from solving, so that the modified Newton method pays
-  // for it once per step.
+  // are there for problems of up to some 10^5 unknowns and as a check.
+  // Preparing -- the factorization, or the multigrid hierarchy -- is
+  // separate from solving, so that the modified Newton method pays for it
+  // once per step.
   template <int dim>
   unsigned int
   SoftRobotDynamics<dim>::solve_linear_system(
@@ -571,7 +572,8 @@ namespace SoftRobot
             direct_problem->SetRHS(const_cast<Epetra_MultiVector *>(
               &rhs.trilinos_vector()));
             AssertThrow(direct_factorization->Solve() == 0,
-                        ExcMessage("The direct solver's triangular solves failed."));
+                        ExcMessage("The direct solver's triangular solves "
+                                   "failed."));
           }
         else
           {
