@@ -246,7 +246,7 @@ def read_spectrum(output, direction):
 
 def collect(name, output, run_result):
     """What the report needs of one run: its status, wall time, dofs,
-    spectrum and tip trajectory (t, u_x)."""
+    spectrum, and whether its tip trajectory is finite."""
     result = dict(run_result)
     result["name"] = name
     statistics = output / "run_statistics.json"
@@ -259,14 +259,10 @@ def collect(name, output, run_result):
     # The vertical motion in experiment 1, the swing in experiments 2 and 3.
     result["spectrum"] = read_spectrum(
         output, "vertical" if experiment_of(name) == "1" else "horizontal")
+    # The trajectory itself is read by load_case() from the run's output.
     trajectory = output / "tip_trajectory.csv"
     if trajectory.exists():
-        d, finite = read_trajectory(trajectory)
-        result["finite"] = finite
-        result["t"] = d["t"].tolist()
-        for component in ("u_x", "u_y", "u_z"):
-            if component in d:
-                result[component] = d[component].tolist()
+        result["finite"] = read_trajectory(trajectory)[1]
     return result
 
 
@@ -321,8 +317,8 @@ def load_case(output_root, name):
     if (source / "tip_spectrum.csv").exists():
         result["spectrum"] = read_spectrum(
             source, "vertical" if experiment_of(name) == "1" else "horizontal")
-    # So is the trajectory: results stored by earlier versions of this
-    # script kept u_x only.
+    # So is the trajectory (results stored by earlier versions of this
+    # script kept a copy of it, some with u_x only).
     if (source / "tip_trajectory.csv").exists():
         d, _ = read_trajectory(source / "tip_trajectory.csv")
         result["t"] = d["t"].tolist()
