@@ -389,7 +389,7 @@ def main():
     section = check_section(args[0], report, "--plot" in sys.argv)
     parameters = geo_parameters()
     meshes = {}
-    for level in ("coarse", "medium", "fine", "extrafine"):
+    for level in ("coarse", "medium", "fine", "extrafine", "ultrafine"):
         for model in MODEL_QUARTERS:
             path = os.path.join(HERE, f"bellows_{model}_{level}.msh")
             if os.path.exists(path):

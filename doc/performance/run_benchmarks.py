@@ -36,12 +36,20 @@ REPOSITORY = Path(__file__).resolve().parents[2]
 HEADLINE = "parameters/bellows/vertical_ds20_3d.prm"
 QUIET = ["Output/Progress interval=0"]
 
+# The meshes of the refinement series: the quarter model's gmsh meshes with
+# element sizes 10.5 (coarse), 5, 3, 2 and 1 mm. The ultrafine one is not
+# committed; meshes/generate_meshes.sh writes it when a case needs it.
+SERIES_LEVELS = ("coarse", "medium", "fine", "extrafine", "ultrafine")
+
 # The solvers of the refinement series: the prefix of the case name, the
-# overrides and what the description adds.
-SERIES_SOLVER = {"": ([], ""),
+# overrides, what the description adds and the meshes they run on (the
+# direct solvers' factorizations of the ultrafine mesh would take most of
+# the benchmark's time).
+SERIES_SOLVER = {"": ([], "", SERIES_LEVELS[:4]),
                  "mumps_": (["Linear solver/Direct solver=MUMPS"],
-                            ", direct solver MUMPS instead of KLU"),
-                 "amg_": (["Linear solver/Solver=CG"], ", CG with algebraic multigrid")}
+                            ", direct solver MUMPS instead of KLU", SERIES_LEVELS[:4]),
+                 "amg_": (["Linear solver/Solver=CG"],
+                          ", CG with algebraic multigrid", SERIES_LEVELS)}
 
 # name, scene, overrides, MPI processes, description
 CASES = [
@@ -57,18 +65,25 @@ CASES = [
     ("headline_no_output", HEADLINE,
      ["Output/Write VTU=false"], 1,
      "the same without VTU output"),
-    # The refinement series: the quarter model's gmsh meshes with element
-    # sizes 10.5 (coarse), 5, 3 and 2 mm, the first 0.5 s each, with the
-    # sparse direct solver and with CG and algebraic multigrid; and the
-    # coarse mesh refined once by deal.II (each tetrahedron cut into 8).
+    # The refinement series: the quarter model's gmsh meshes, the first
+    # 0.5 s each, with the sparse direct solvers and with CG and algebraic
+    # multigrid; the extrafine mesh with CG solving to 1e-8 instead of the
+    # default 1e-2; and the coarse mesh refined once by deal.II (each
+    # tetrahedron cut into 8).
 ] + [
     (f"{prefix}quarter_{level}_window", HEADLINE,
      [f"Geometry/Mesh file=../../meshes/bellows_quarter_{level}.msh",
       "Time integration/End time=0.5", "Output/Spectral analysis=false"]
      + SERIES_SOLVER[prefix][0], 1,
      f"{level} quarter mesh, first 0.5 s{SERIES_SOLVER[prefix][1]}")
-    for prefix in SERIES_SOLVER for level in ("coarse", "medium", "fine", "extrafine")
+    for prefix in SERIES_SOLVER for level in SERIES_SOLVER[prefix][2]
 ] + [
+    ("amg_quarter_extrafine_tolerance_1e-8", HEADLINE,
+     ["Geometry/Mesh file=../../meshes/bellows_quarter_extrafine.msh",
+      "Time integration/End time=0.5", "Output/Spectral analysis=false",
+      "Linear solver/Solver=CG", "Linear solver/Relative tolerance=1e-8"], 1,
+     "extrafine quarter mesh, first 0.5 s, CG with algebraic multigrid "
+     "solving to 1e-8 instead of 1e-2"),
     ("quarter_refined_window", HEADLINE,
      ["Geometry/Global refinements=1",
       "Time integration/End time=0.5", "Output/Spectral analysis=false"], 1,
@@ -134,6 +149,17 @@ def output_seconds(s):
 HEADLINE_REPEATS = 3
 
 
+def final_tip(output):
+    """The tip displacement (u_x, u_y, u_z) at the end of the record, as
+    printed, to compare runs that should give the same motion."""
+    path = output / "tip_trajectory.csv"
+    if not path.exists():
+        return None
+    with open(path) as file:
+        rows = list(csv.DictReader(line for line in file if not line.startswith("#")))
+    return ", ".join(rows[-1][key] for key in ("u_x", "u_y", "u_z") if key in rows[-1])
+
+
 def run_case(build, output_root, case, reuse=False):
     """Runs a case (the headline case HEADLINE_REPEATS times) and returns
     its statistics, those of the run with the median process time."""
@@ -151,14 +177,30 @@ def run_case(build, output_root, case, reuse=False):
     return median
 
 
+def ensure_mesh(overrides):
+    """Writes the mesh a case names with meshes/generate_meshes.sh if it is
+    not there (the ultrafine mesh is not committed)."""
+    for entry in overrides:
+        if entry.startswith("Geometry/Mesh file="):
+            mesh = (REPOSITORY / "parameters/bellows" / entry.split("=", 1)[1]).resolve()
+            if not mesh.exists():
+                model, level = mesh.stem.split("_")[1:3]
+                print(f"writing {mesh.name} with gmsh", flush=True)
+                subprocess.run(["bash", str(REPOSITORY / "meshes/generate_meshes.sh"),
+                                model, level], check=True)
+
+
 def run_case_once(build, output_root, case, reuse=False, label=""):
     name, scene, overrides, processes, description = case
     output = output_root / name
+    if not reuse:
+        ensure_mesh(overrides)
     if reuse:
         statistics = json.loads((output / "run_statistics.json").read_text())
         statistics["measured_seconds"] = float(
             (output / "process_seconds").read_text())
         statistics["tip"] = tip_frequency(output)
+        statistics["final_tip"] = final_tip(output)
         if (output / "repeats.json").exists():
             statistics["repeats"] = json.loads(
                 (output / "repeats.json").read_text())
@@ -187,6 +229,7 @@ def run_case_once(build, output_root, case, reuse=False, label=""):
     statistics["measured_seconds"] = seconds
     (output / "process_seconds").write_text(f"{seconds:.4f}\n")
     statistics["tip"] = tip_frequency(output)
+    statistics["final_tip"] = final_tip(output)
     print(f"    {statistics['wall_seconds']:.2f} s, "
           f"{statistics['dofs']} dofs, f = {statistics['tip']}", flush=True)
     return statistics
@@ -320,28 +363,41 @@ def write_report(path, results, calculix, run):
                        "Preconditioner setup", "Linear solve")
         return 1000 * work / max(s["newton_iterations"], 1)
 
-    levels = [level for level in ("coarse", "medium", "fine", "extrafine")
-              if f"quarter_{level}_window" in by_name]
+    def per_cg_iteration(s):
+        """Nanoseconds per unknown per CG iteration (the solves' time)."""
+        return 1e9 * section(s, "Linear solve") / max(s["linear_iterations"], 1) / s["dofs"]
+
+    levels = [level for level in SERIES_LEVELS
+              if any(f"{prefix}quarter_{level}_window" in by_name
+                     for prefix in SERIES_SOLVER)]
     if len(levels) >= 2:
         lines.append("## Cost per Newton iteration over the refinement series\n")
-        lines.append("The quarter model's gmsh meshes (element sizes 10.5, 5, 3 "
-                     "and 2 mm), the first 0.5 s each (the static equilibrium "
+        lines.append("The quarter model's gmsh meshes (element sizes 10.5, 5, 3, "
+                     "2 and 1 mm), the first 0.5 s each (the static equilibrium "
                      "included). Per Newton iteration: the time of the "
                      "assemblies, the solver set-ups and the solves divided by "
                      "the number of Newton iterations, and the exponent p of "
-                     "t ~ N^p between neighbouring meshes; with the sparse "
+                     "t ~ N^p from the mesh before; with the sparse "
                      "direct solvers KLU and MUMPS and with CG preconditioned by ML's "
                      "algebraic multigrid (rigid-body modes as its near null "
-                     "space, 2 Chebyshev sweeps, relative tolerance 1e-8).\n")
+                     "space, 2 Chebyshev sweeps, relative tolerance 1e-2: the "
+                     "forcing term of an inexact Newton method, see "
+                     "`Linear solver/Relative tolerance`). For CG also the "
+                     "iterations per solve and the solves' time per unknown "
+                     "and CG iteration, which would stay constant if the "
+                     "machine's memory were equally fast for all sizes.\n")
         lines.append("| mesh | dofs | KLU: ms per Newton iteration | exponent "
                      "| MUMPS: ms per Newton iteration | exponent "
-                     "| AMG: ms per Newton iteration | exponent | CG iterations per solve |")
-        lines.append("|---|---:|---:|---:|---:|---:|---:|---:|---:|")
+                     "| AMG: ms per Newton iteration | exponent "
+                     "| CG iterations per solve | ns per dof and CG iteration |")
+        lines.append("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|")
         previous = None
+        first = {}
+        last = {}
         for level in levels:
             runs = [by_name.get(f"{prefix}quarter_{level}_window")
-                    for prefix in ("", "mumps_", "amg_")]
-            dofs = runs[0]["dofs"]
+                    for prefix in SERIES_SOLVER]
+            dofs = next(r for r in runs if r)["dofs"]
             now = [dofs] + [per_iteration(r) if r else None for r in runs]
             cells = []
             for k in (1, 2, 3):
@@ -349,18 +405,40 @@ def write_report(path, results, calculix, run):
                 if previous and now[k] and previous[k]:
                     p = math.log(now[k] / previous[k]) / math.log(dofs / previous[0])
                     exponent = f"{p:.2f}"
+                if now[k]:
+                    first.setdefault(k, (dofs, now[k], level))
+                    last[k] = (dofs, now[k], level)
                 cells.append("– | –" if now[k] is None else
                              f"{now[k]:.{2 if k < 3 else 1}f} | {exponent}")
             amg = runs[2]
-            iterations = ("–" if not amg else
-                          f"{amg['linear_iterations'] / max(amg['newton_iterations'], 1):.0f}")
+            iterations = ("– | –" if not amg else
+                          f"{amg['linear_iterations'] / max(amg['newton_iterations'], 1):.0f} "
+                          f"| {per_cg_iteration(amg):.0f}")
             lines.append(f"| {level} | {dofs} | {' | '.join(cells)} | {iterations} |")
             previous = now
         if "quarter_refined_window" in by_name:
             refined = by_name["quarter_refined_window"]
             lines.append(f"| coarse refined once | {refined['dofs']} "
-                         f"| {per_iteration(refined):.2f} | | | | | | |")
+                         f"| {per_iteration(refined):.2f} | | | | | | | |")
         lines.append("")
+        names = {1: "KLU", 2: "MUMPS", 3: "CG+AMG"}
+        overall = [f"{names[k]} N^{math.log(last[k][1] / first[k][1]) / math.log(last[k][0] / first[k][0]):.2f} "
+                   f"({first[k][2]} to {last[k][2]} mesh)"
+                   for k in sorted(last) if last[k][0] > first[k][0]]
+        lines.append("Over the whole series: " + ", ".join(overall) + ".\n")
+        tight = by_name.get("amg_quarter_extrafine_tolerance_1e-8")
+        loose = by_name.get("amg_quarter_extrafine_window")
+        if tight and loose:
+            lines.append("| extrafine mesh, CG+AMG | Newton iterations | CG iterations per solve "
+                         "| ms per Newton iteration | solves s | tip displacement at 0.5 s (mm) |")
+            lines.append("|---|---:|---:|---:|---:|---|")
+            for label, s in (("relative tolerance 1e-2 (default)", loose),
+                             ("relative tolerance 1e-8", tight)):
+                lines.append(f"| {label} | {s['newton_iterations']} "
+                             f"| {s['linear_iterations'] / max(s['newton_iterations'], 1):.0f} "
+                             f"| {per_iteration(s):.1f} | {section(s, 'Linear solve'):.2f} "
+                             f"| {s['final_tip']} |")
+            lines.append("")
     ratios = [(ratio, by_name[name]) for ratio, name in
               ((2, "amg_quarter_medium_kappa2"), (10, "amg_quarter_medium_kappa10"),
                (100, "amg_quarter_medium_window")) if name in by_name]

@@ -273,6 +273,13 @@ namespace SoftRobot
     {
       return total_tangent_updates;
     }
+    // Iterations of the iterative linear solver so far (one per solve
+    // with the direct solver).
+    unsigned int
+    n_linear_iterations() const
+    {
+      return total_linear_iterations;
+    }
 
   private:
     // @sect4{The state of the motion}
