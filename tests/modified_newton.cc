@@ -44,8 +44,8 @@ namespace
   template <int dim>
   Run
   swing(const std::string &nonlinear_solver,
-        const std::string &linear_solver = "  set Solver = Direct\n"
-                                           "  set Direct solver = KLU\n",
+        const std::string &linear_solver          = "  set Solver = Direct\n"
+                                                    "  set Direct solver = KLU\n",
         const double       end_time_in_wave_times = 8.,
         const std::string &more_sections          = "")
   {
@@ -159,7 +159,7 @@ TYPED_TEST(ModifiedNewtonTest, AccelerationKeepsTheMotionAndSavesIterations)
 // must be the same to the tolerance of the Newton iterations.
 TYPED_TEST(ModifiedNewtonTest, MumpsGivesTheMotionOfKlu)
 {
-  constexpr int dim   = TypeParam::value;
+  constexpr int dim = TypeParam::value;
   const Run     klu =
     swing<dim>("", "  set Solver = Direct\n  set Direct solver = KLU\n", 2.);
   const Run mumps =
@@ -187,11 +187,10 @@ TYPED_TEST(ModifiedNewtonTest, InexactSolvesGiveTheMotionOfExactOnes)
 {
   constexpr int      dim  = TypeParam::value;
   const unsigned int n[3] = {1200, 48, 16}, m[3] = {1, 6, 2};
-  const std::string  mesh = "subsection Geometry\n  set Generator arguments = " +
+  const std::string mesh = "subsection Geometry\n  set Generator arguments = " +
                            box_arguments(dim, n[dim - 1], m[dim - 1], 10., 2.) +
                            "\nend\n";
-  const Run direct =
-    swing<dim>("", "  set Solver = Direct\n", 0.6, mesh);
+  const Run direct = swing<dim>("", "  set Solver = Direct\n", 0.6, mesh);
   const Run inexact =
     swing<dim>("", "  set Solver = CG\n", 0.6, mesh); // the default tolerance
   const Run tight = swing<dim>(

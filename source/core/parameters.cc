@@ -666,9 +666,9 @@ namespace SoftRobot
       // to the rate at which the residual falls; the modified Newton
       // iterations of the time steps reduce it by a factor of 5 to 10 per
       // iteration anyway. On the quarter model's meshes, eta = 1e-2 takes
-      // 3 to 8 percent more Newton iterations than 1e-8 and a quarter to a
-      // third of the CG iterations, with the same motion to ten digits;
-      // with 1e-1 the Newton iterations rise by half.
+      // 3 to 8 percent more Newton iterations than 1e-8 and about a quarter
+      // of the CG iterations, with the same motion to ten digits; with 1e-1
+      // the Newton iterations rise by half.
       prm.declare_entry("Relative tolerance",
                         "1e-2",
                         Patterns::Double(1e-16, 0.5),
