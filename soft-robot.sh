@@ -70,7 +70,7 @@ case "${1:-}" in
     ctest --output-on-failure -j "$(nproc)"
     ;;
   benchmark)
-    packages+=(python3-numpy calculix-ccx openmpi-bin)
+    packages+=(python3-numpy calculix-ccx openmpi-bin gmsh)
     install_missing_packages
     build Release build-release -DSOFT_ROBOT_BUILD_TESTS=OFF
     /usr/bin/python3 doc/performance/run_benchmarks.py build-release "${@:2}"
