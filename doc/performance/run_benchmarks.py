@@ -193,8 +193,6 @@ def ensure_mesh(overrides):
 def run_case_once(build, output_root, case, reuse=False, label=""):
     name, scene, overrides, processes, description = case
     output = output_root / name
-    if not reuse:
-        ensure_mesh(overrides)
     if reuse:
         statistics = json.loads((output / "run_statistics.json").read_text())
         statistics["measured_seconds"] = float(
@@ -205,6 +203,7 @@ def run_case_once(build, output_root, case, reuse=False, label=""):
             statistics["repeats"] = json.loads(
                 (output / "repeats.json").read_text())
         return statistics
+    ensure_mesh(overrides)
     command = [str(build / "soft-robot"), scene,
                "--set", f"Problem/Output directory={output}"]
     for entry in QUIET + overrides:
