@@ -174,6 +174,10 @@ def run_case(build, output_root, case, reuse=False):
                          "wall_seconds": [run["wall_seconds"] for run in runs]}
     (output_root / name / "repeats.json").write_text(
         json.dumps(median["repeats"], indent=2) + "\n")
+    # The runs share the output directory, which keeps the last run's
+    # statistics; the median's are kept beside them for --report-only.
+    (output_root / name / "median_statistics.json").write_text(
+        json.dumps(median, indent=2) + "\n")
     return median
 
 
@@ -194,9 +198,13 @@ def run_case_once(build, output_root, case, reuse=False, label=""):
     name, scene, overrides, processes, description = case
     output = output_root / name
     if reuse:
-        statistics = json.loads((output / "run_statistics.json").read_text())
-        statistics["measured_seconds"] = float(
-            (output / "process_seconds").read_text())
+        median = output / "median_statistics.json"
+        if median.exists():
+            statistics = json.loads(median.read_text())
+        else:
+            statistics = json.loads((output / "run_statistics.json").read_text())
+            statistics["measured_seconds"] = float(
+                (output / "process_seconds").read_text())
         statistics["tip"] = tip_frequency(output)
         statistics["final_tip"] = final_tip(output)
         if (output / "repeats.json").exists():
