@@ -36,6 +36,7 @@ namespace
     unsigned int                     newton_iterations = 0;
     unsigned int                     factorizations    = 0;
     unsigned int                     linear_iterations = 0;
+    std::string                      linear_solver;
   };
 
   // The tip displacement after every step, for the given entries of the
@@ -86,6 +87,7 @@ namespace
     run.newton_iterations = body.n_newton_iterations();
     run.factorizations    = body.n_tangent_updates();
     run.linear_iterations = body.n_linear_iterations();
+    run.linear_solver     = body.linear_solver_in_use();
     return run;
   }
 
@@ -170,6 +172,10 @@ TYPED_TEST(ModifiedNewtonTest, MumpsGivesTheMotionOfKlu)
             << "); difference " << difference(klu, mumps) << std::endl;
   EXPECT_GT(klu.tip.size(), 10u);
   EXPECT_LT(difference(klu, mumps), 1e-9);
+  // The two runs used the solvers they were given (the class of the solver
+  // object Amesos created), so the comparison above is not KLU with itself.
+  EXPECT_EQ(klu.linear_solver, "Amesos_Klu");
+  EXPECT_EQ(mumps.linear_solver, "Amesos_Mumps");
 }
 
 
@@ -203,6 +209,8 @@ TYPED_TEST(ModifiedNewtonTest, InexactSolvesGiveTheMotionOfExactOnes)
             << "solver " << difference(direct, inexact) << ", "
             << difference(direct, tight) << std::endl;
   EXPECT_GE(direct.tip.size(), 6u);
+  EXPECT_EQ(direct.linear_solver, "Amesos_Klu");
+  EXPECT_EQ(inexact.linear_solver, "CG with ML");
   EXPECT_LT(difference(direct, inexact), 1e-9);
   EXPECT_LT(difference(direct, tight), 1e-9);
   EXPECT_LE(inexact.newton_iterations, 1.25 * tight.newton_iterations);

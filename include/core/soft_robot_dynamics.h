@@ -280,6 +280,11 @@ namespace SoftRobot
     {
       return total_linear_iterations;
     }
+    // The linear solver that solved the last system: the class of the
+    // Amesos solver that was created ("Amesos_Klu", "Amesos_Mumps"), or
+    // "CG with ML" / "GMRES with ML"; empty before the first solve.
+    std::string
+    linear_solver_in_use() const;
 
   private:
     // @sect4{The state of the motion}

@@ -10,6 +10,9 @@
 #include <Epetra_MultiVector.h>
 #include <Teuchos_ParameterList.hpp>
 #include <cmath>
+#include <cstdlib>
+#include <cxxabi.h>
+#include <typeinfo>
 #include <deque>
 #include <core/soft_robot_dynamics.h>
 #include <deal.II/base/function_parser.h>
@@ -624,6 +627,28 @@ namespace SoftRobot
 
 
 
+  template <int dim>
+  std::string
+  SoftRobotDynamics<dim>::linear_solver_in_use() const
+  {
+    if (parameters.LinearSolver::type != "Direct")
+      return amg_preconditioner ? parameters.LinearSolver::type + " with ML" :
+                                  "";
+    if (!direct_factorization)
+      return "";
+    // The dynamic type of the object Amesos' factory created.
+    const Amesos_BaseSolver &solver = *direct_factorization;
+    int                      status = 0;
+    char *name = abi::__cxa_demangle(typeid(solver).name(), nullptr, nullptr,
+                                     &status);
+    const std::string result =
+      (status == 0 && name != nullptr) ? name : typeid(solver).name();
+    std::free(name);
+    return result;
+  }
+
+
+
   // @sect4{SoftRobotDynamics::solve_static_equilibrium}
   //
   // The equilibrium $\mathbf f_\text{int}(\mathbf u, \mathbf 0) =
@@ -1095,6 +1120,7 @@ namespace SoftRobot
   template unsigned int SoftRobotDynamics<dim>::solve_prepared_system(        \
     const TrilinosWrappers::MPI::Vector &, TrilinosWrappers::MPI::Vector &);  \
   template void SoftRobotDynamics<dim>::prepare_step_tangent(const double);   \
+  template std::string SoftRobotDynamics<dim>::linear_solver_in_use() const; \
   template unsigned int SoftRobotDynamics<dim>::solve_linear_system(          \
     TrilinosWrappers::SparseMatrix &,                                         \
     const TrilinosWrappers::MPI::Vector &,                                    \
