@@ -447,14 +447,15 @@ namespace SoftRobot
       // per cell: its material law and damping coefficient
       std::vector<const NeoHookeanEnergy<dim> *> material;
       std::vector<double>                        damping_zeta;
-      // Runs on one process with only homogeneous constraints (fixed
-      // components): where each entry of a cell matrix goes in the value
-      // array of the Epetra matrices, [cell][i][j], -1 for a constrained
-      // row or column; where the diagonal entry of each constrained dof of
-      // a cell is, [cell][i], -1 if the dof is free; and the index of each
-      // free dof in the vectors' value arrays, [cell][i], -1 if
-      // constrained. Empty otherwise: then AffineConstraints adds the
-      // cell contributions.
+      // With only homogeneous constraints (fixed components): where each
+      // entry of a cell matrix goes in the value array of the Epetra
+      // matrices, [cell][i][j], -1 for a constrained row or column; where
+      // the diagonal entry of each constrained dof of a cell is, [cell][i],
+      // -1 if the dof is free. In parallel runs a row that another process
+      // owns has -2 in both; its entries go through Epetra. In serial runs
+      // also the index of each free dof in the vectors' value arrays,
+      // [cell][i], -1 if constrained (empty in parallel runs). Empty
+      // otherwise: then AffineConstraints adds the cell contributions.
       std::vector<int> matrix_positions;
       std::vector<int> diagonal_positions;
       std::vector<int> vector_positions;

@@ -116,10 +116,12 @@ namespace SoftRobot
       next_damping_matrix = 0.;
     internal_force = 0.;
 
-    // In serial runs the cell contributions go straight to the value arrays
-    // of the matrices and the force vector, at the addresses that
-    // setup_cell_geometry() computed.
+    // The cell matrices go straight to the value arrays of the matrices, at
+    // the addresses that setup_cell_geometry() computed (in parallel runs
+    // the rows of this process); in serial runs the force vector's entries
+    // too.
     const bool direct_addresses = !geometry.matrix_positions.empty();
+    const bool direct_vectors   = !geometry.vector_positions.empty();
     double    *matrix_values = nullptr, *damping_values = nullptr;
     if (direct_addresses)
       {
@@ -136,7 +138,7 @@ namespace SoftRobot
     // The displacements of the cells' dofs, read once (from the ghosted
     // vector in parallel), so that the threads only read a plain array.
     std::vector<double> cell_values(geometry.dof_indices.size());
-    if (direct_addresses)
+    if (direct_vectors)
       {
         const double *u_values = u.trilinos_vector()[0];
         for (std::size_t k = 0; k < cell_values.size(); ++k)
@@ -334,13 +336,55 @@ namespace SoftRobot
             }
     };
 
-    // The additions of a cell's contributions at the direct addresses. A
+    // The additions of a cell matrix at the direct addresses. A
     // constrained dof's row and column are left out, and its diagonal gets
     // the absolute value of the cell matrix's diagonal entry (if that is
     // zero, the mean absolute diagonal entry), as
     // AffineConstraints::distribute_local_to_global() does: it keeps the
-    // matrix regular and of the scale of its other entries.
+    // matrix regular and of the scale of its other entries. A row of
+    // another process (address -2) goes through Epetra, which sends it to
+    // its owner when the matrix is compressed.
     const unsigned int dofs_squared = dofs_per_cell * dofs_per_cell;
+    const auto add_matrix = [&](const CellContribution         &local,
+                                const FullMatrix<double>       &cell_matrix,
+                                double                         *values,
+                                TrilinosWrappers::SparseMatrix &matrix) {
+      const int *matrix_position =
+        &geometry.matrix_positions[local.cell * dofs_squared];
+      const int *diagonal_position =
+        &geometry.diagonal_positions[local.cell * dofs_per_cell];
+      const double *entries = &cell_matrix(0, 0);
+      for (unsigned int k = 0; k < dofs_squared; ++k)
+        if (matrix_position[k] >= 0)
+          values[matrix_position[k]] += entries[k];
+      double mean_diagonal = 0.;
+      for (unsigned int i = 0; i < dofs_per_cell; ++i)
+        mean_diagonal += std::abs(cell_matrix(i, i));
+      mean_diagonal /= dofs_per_cell;
+      if (mean_diagonal == 0.)
+        mean_diagonal = cell_matrix.l1_norm() / dofs_per_cell;
+      if (mean_diagonal == 0.)
+        mean_diagonal = 1.;
+      for (unsigned int i = 0; i < dofs_per_cell; ++i)
+        {
+          const double diagonal = (cell_matrix(i, i) != 0.) ?
+                                    std::abs(cell_matrix(i, i)) :
+                                    mean_diagonal;
+          if (diagonal_position[i] >= 0)
+            values[diagonal_position[i]] += diagonal;
+          else if (diagonal_position[i] == -2)
+            {
+              const types::global_dof_index row = local.dof_indices[i];
+              if (constraints.is_constrained(row))
+                matrix.add(row, row, diagonal);
+              else
+                for (unsigned int j = 0; j < dofs_per_cell; ++j)
+                  if (!constraints.is_constrained(local.dof_indices[j]))
+                    matrix.add(row, local.dof_indices[j], cell_matrix(i, j));
+            }
+        }
+    };
+    // In serial runs also the force vector's entries.
     const auto add_with_direct_addresses = [&](const CellContribution &local) {
       const int *vector_position =
         &geometry.vector_positions[local.cell * dofs_per_cell];
@@ -349,33 +393,9 @@ namespace SoftRobot
           force_values[vector_position[i]] += local.force(i);
       if (!local.with_matrix)
         return;
-      const int *matrix_position =
-        &geometry.matrix_positions[local.cell * dofs_squared];
-      const int *diagonal_position =
-        &geometry.diagonal_positions[local.cell * dofs_per_cell];
-      const auto add = [&](const FullMatrix<double> &cell_matrix,
-                           double                   *values) {
-        const double *entries = &cell_matrix(0, 0);
-        for (unsigned int k = 0; k < dofs_squared; ++k)
-          if (matrix_position[k] >= 0)
-            values[matrix_position[k]] += entries[k];
-        double mean_diagonal = 0.;
-        for (unsigned int i = 0; i < dofs_per_cell; ++i)
-          mean_diagonal += std::abs(cell_matrix(i, i));
-        mean_diagonal /= dofs_per_cell;
-        if (mean_diagonal == 0.)
-          mean_diagonal = cell_matrix.l1_norm() / dofs_per_cell;
-        if (mean_diagonal == 0.)
-          mean_diagonal = 1.;
-        for (unsigned int i = 0; i < dofs_per_cell; ++i)
-          if (diagonal_position[i] >= 0)
-            values[diagonal_position[i]] += (cell_matrix(i, i) != 0.) ?
-                                              std::abs(cell_matrix(i, i)) :
-                                              mean_diagonal;
-      };
-      add(local.matrix, matrix_values);
+      add_matrix(local, local.matrix, matrix_values, system_matrix);
       if (local.with_damping)
-        add(local.damping, damping_values);
+        add_matrix(local, local.damping, damping_values, next_damping_matrix);
     };
 
     // The additions into the global objects, in the order of the cells.
@@ -385,9 +405,23 @@ namespace SoftRobot
       result.min_jacobian = std::min(result.min_jacobian, local.min_jacobian);
       result.inverted_point_found =
         result.inverted_point_found || local.inverted;
-      if (direct_addresses)
+      if (direct_vectors)
         {
           add_with_direct_addresses(local);
+          return;
+        }
+      if (direct_addresses)
+        {
+          constraints.distribute_local_to_global(local.force,
+                                                 local.dof_indices,
+                                                 internal_force);
+          if (local.with_matrix)
+            add_matrix(local, local.matrix, matrix_values, system_matrix);
+          if (local.with_damping)
+            add_matrix(local,
+                       local.damping,
+                       damping_values,
+                       next_damping_matrix);
           return;
         }
       if (local.with_matrix)
@@ -425,7 +459,7 @@ namespace SoftRobot
                       CellContribution(),
                       2 * MultithreadInfo::n_threads(),
                       64);
-    else if (direct_addresses)
+    else if (direct_vectors)
       {
         constexpr unsigned int              n_parts = 2;
         const unsigned int                  n_values = internal_force.locally_owned_size();
@@ -487,9 +521,9 @@ namespace SoftRobot
       system_matrix.compress(VectorOperation::add);
     if (with_damping)
       next_damping_matrix.compress(VectorOperation::add);
-    // (With direct addresses the vector was not touched through deal.II,
-    // and one process has nothing to exchange.)
-    if (!direct_addresses)
+    // (In serial runs the vector was not touched through deal.II, and one
+    // process has nothing to exchange.)
+    if (!direct_vectors)
       internal_force.compress(VectorOperation::add);
 
     result.strain_energy =

@@ -540,12 +540,14 @@ namespace SoftRobot
         }
 
     // The direct addresses of the cell matrices' entries in the global
-    // matrices, for serial runs. Adding a cell matrix through Epetra's
-    // SumIntoGlobalValues searches every row for every column; with the
-    // addresses, it is a plain loop (a sixth of the run time of the
-    // headline benchmark went into those searches). The two matrices
-    // share their sparsity pattern and so their storage layout, which is
-    // checked.
+    // matrices. Adding a cell matrix through Epetra's SumIntoGlobalValues
+    // searches every row for every column; with the addresses, it is a
+    // plain loop (a sixth of the run time of the headline benchmark went
+    // into those searches). The two matrices share their sparsity pattern
+    // and so their storage layout, which is checked. In parallel runs the
+    // rows of this process have addresses; the few rows of a cell that
+    // another process owns (on the interface) still go through Epetra,
+    // and the vectors through AffineConstraints.
     bool only_fixed_components = true;
     for (const auto &line : constraints.get_lines())
       only_fixed_components = only_fixed_components && line.entries.empty() &&
@@ -553,8 +555,8 @@ namespace SoftRobot
     int    *row_offsets = nullptr, *columns = nullptr;
     double *values      = nullptr;
     const Epetra_CrsMatrix &matrix = system_matrix.trilinos_matrix();
-    if (Utilities::MPI::n_mpi_processes(mpi_communicator) != 1 ||
-        !only_fixed_components ||
+    const bool serial = (Utilities::MPI::n_mpi_processes(mpi_communicator) == 1);
+    if (!only_fixed_components ||
         matrix.ExtractCrsDataPointers(row_offsets, columns, values) != 0)
       return;
     if (has_damping)
@@ -580,7 +582,8 @@ namespace SoftRobot
     const unsigned int n = geometry.dofs_per_cell;
     geometry.matrix_positions.resize(geometry.dof_indices.size() * n);
     geometry.diagonal_positions.resize(geometry.dof_indices.size());
-    geometry.vector_positions.resize(geometry.dof_indices.size());
+    if (serial)
+      geometry.vector_positions.resize(geometry.dof_indices.size());
     // the position of entry (row, column) in the value array
     const auto position = [&](const types::global_dof_index row,
                               const types::global_dof_index column) {
@@ -600,8 +603,16 @@ namespace SoftRobot
         for (unsigned int i = 0; i < n; ++i)
           {
             const bool fixed = constraints.is_constrained(dofs[i]);
-            geometry.vector_positions[cell * n + i] =
-              fixed ? -1 : vector_map.LID(static_cast<int>(dofs[i]));
+            if (serial)
+              geometry.vector_positions[cell * n + i] =
+                fixed ? -1 : vector_map.LID(static_cast<int>(dofs[i]));
+            if (!locally_owned_dofs.is_element(dofs[i]))
+              {
+                geometry.diagonal_positions[cell * n + i] = -2;
+                for (unsigned int j = 0; j < n; ++j)
+                  geometry.matrix_positions[(cell * n + i) * n + j] = -2;
+                continue;
+              }
             geometry.diagonal_positions[cell * n + i] =
               fixed ? position(dofs[i], dofs[i]) : -1;
             for (unsigned int j = 0; j < n; ++j)
