@@ -42,14 +42,19 @@ QUIET = ["Output/Progress interval=0"]
 SERIES_LEVELS = ("coarse", "medium", "fine", "extrafine", "ultrafine")
 
 # The solvers of the refinement series: the prefix of the case name, the
-# overrides, what the description adds and the meshes they run on (KLU not
+# overrides, what the description adds, the meshes they run on (KLU not
 # on the ultrafine mesh: MUMPS factorizes it in 2.3 s, KLU would take
-# several times that).
-SERIES_SOLVER = {"": ([], "", SERIES_LEVELS[:4]),
+# several times that) and the MPI processes. Epetra's products and ML's
+# multigrid run in one thread per process, so CG with multigrid uses the
+# second core only with a second process.
+SERIES_SOLVER = {"": ([], "", SERIES_LEVELS[:4], 1),
                  "mumps_": (["Linear solver/Direct solver=MUMPS"],
-                            ", direct solver MUMPS instead of KLU", SERIES_LEVELS),
+                            ", direct solver MUMPS instead of KLU", SERIES_LEVELS, 1),
                  "amg_": (["Linear solver/Solver=CG"],
-                          ", CG with algebraic multigrid", SERIES_LEVELS)}
+                          ", CG with algebraic multigrid", SERIES_LEVELS, 1),
+                 "amg_mpi2_": (["Linear solver/Solver=CG"],
+                               ", CG with algebraic multigrid, 2 MPI processes",
+                               SERIES_LEVELS, 2)}
 
 # name, scene, overrides, MPI processes, description
 CASES = [
@@ -74,7 +79,7 @@ CASES = [
     (f"{prefix}quarter_{level}_window", HEADLINE,
      [f"Geometry/Mesh file=../../meshes/bellows_quarter_{level}.msh",
       "Time integration/End time=0.5", "Output/Spectral analysis=false"]
-     + SERIES_SOLVER[prefix][0], 1,
+     + SERIES_SOLVER[prefix][0], SERIES_SOLVER[prefix][3],
      f"{level} quarter mesh, first 0.5 s{SERIES_SOLVER[prefix][1]}")
     for prefix in SERIES_SOLVER for level in SERIES_SOLVER[prefix][2]
 ] + [
@@ -389,15 +394,20 @@ def write_report(path, results, calculix, run):
                      "algebraic multigrid (rigid-body modes as its near null "
                      "space, 2 Chebyshev sweeps, relative tolerance 1e-2: the "
                      "forcing term of an inexact Newton method, see "
-                     "`Linear solver/Relative tolerance`). For CG also the "
+                     "`Linear solver/Relative tolerance`), on one process "
+                     "(two threads in the assemblies, one for the solver) and, "
+                     "for CG with multigrid, also on two MPI processes (one "
+                     "thread each: both cores in the solver too). For CG on "
+                     "one process also the "
                      "iterations per solve and the solves' time per unknown "
                      "and CG iteration, which would stay constant if the "
                      "machine's memory were equally fast for all sizes.\n")
         lines.append("| mesh | dofs | KLU: ms per Newton iteration | exponent "
                      "| MUMPS: ms per Newton iteration | exponent "
                      "| AMG: ms per Newton iteration | exponent "
+                     "| AMG, 2 processes: ms per Newton iteration | exponent "
                      "| CG iterations per solve | ns per dof and CG iteration |")
-        lines.append("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|")
+        lines.append("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|")
         previous = None
         first = {}
         last = {}
@@ -407,7 +417,7 @@ def write_report(path, results, calculix, run):
             dofs = next(r for r in runs if r)["dofs"]
             now = [dofs] + [per_iteration(r) if r else None for r in runs]
             cells = []
-            for k in (1, 2, 3):
+            for k in (1, 2, 3, 4):
                 exponent = "–"
                 if previous and now[k] and previous[k]:
                     p = math.log(now[k] / previous[k]) / math.log(dofs / previous[0])
@@ -426,9 +436,9 @@ def write_report(path, results, calculix, run):
         if "quarter_refined_window" in by_name:
             refined = by_name["quarter_refined_window"]
             lines.append(f"| coarse refined once | {refined['dofs']} "
-                         f"| {per_iteration(refined):.2f} | | | | | | | |")
+                         f"| {per_iteration(refined):.2f} | | | | | | | | | |")
         lines.append("")
-        names = {1: "KLU", 2: "MUMPS", 3: "CG+AMG"}
+        names = {1: "KLU", 2: "MUMPS", 3: "CG+AMG", 4: "CG+AMG on 2 processes"}
         overall = [f"{names[k]} N^{math.log(last[k][1] / first[k][1]) / math.log(last[k][0] / first[k][0]):.2f} "
                    f"({first[k][2]} to {last[k][2]} mesh)"
                    for k in sorted(last) if last[k][0] > first[k][0]]
