@@ -86,7 +86,10 @@ namespace dealii::TrilinosWrappers
   class PreconditionAMG;
 } // namespace dealii::TrilinosWrappers
 class Amesos_BaseSolver;
+class Epetra_Import;
 class Epetra_LinearProblem;
+class Epetra_Map;
+class Epetra_Vector;
 
 namespace SoftRobot
 {
@@ -454,14 +457,28 @@ namespace SoftRobot
       // -1 if the dof is free. In parallel runs a row that another process
       // owns has -2 in both; its entries go through Epetra. In serial runs
       // also the index of each free dof in the vectors' value arrays,
-      // [cell][i], -1 if constrained (empty in parallel runs). Empty
+      // [cell][i], -1 if constrained (empty in parallel runs). In parallel
+      // runs instead `distributed_vector_positions`, [cell][i]: the index
+      // in this process's part of the vectors for a dof it owns, -1 for a
+      // constrained dof, and -2 - g for the free dof that another process
+      // owns and that is entry g of the ghost vectors below. Empty
       // otherwise: then AffineConstraints adds the cell contributions.
       std::vector<int> matrix_positions;
       std::vector<int> diagonal_positions;
       std::vector<int> vector_positions;
+      std::vector<int> distributed_vector_positions;
     };
     void
     setup_cell_geometry();
+
+    // In parallel runs with direct addresses: the free dofs of the locally
+    // owned cells that other processes own, in one Epetra vector for the
+    // displacements read from their owners and one for the forces sent to
+    // them, and the communication pattern between these vectors and the
+    // distributed ones, set up once.
+    std::unique_ptr<Epetra_Map>    ghost_map;
+    std::unique_ptr<Epetra_Import> ghost_import;
+    std::unique_ptr<Epetra_Vector> ghost_displacements, ghost_forces;
 
     // The boundary faces that carry the nominal tractions, with what their
     // forces need in the reference configuration, which never changes: the

@@ -6,6 +6,8 @@
 // forces.
 
 #include <core/soft_robot_dynamics.h>
+#include <Epetra_Import.h>
+#include <Epetra_Vector.h>
 #include <deal.II/base/multithread_info.h>
 #include <deal.II/base/thread_management.h>
 #include <deal.II/base/work_stream.h>
@@ -122,6 +124,8 @@ namespace SoftRobot
     // too.
     const bool direct_addresses = !geometry.matrix_positions.empty();
     const bool direct_vectors   = !geometry.vector_positions.empty();
+    const bool distributed_vectors =
+      !geometry.distributed_vector_positions.empty();
     double    *matrix_values = nullptr, *damping_values = nullptr;
     if (direct_addresses)
       {
@@ -135,8 +139,9 @@ namespace SoftRobot
       }
     double *force_values = internal_force.trilinos_vector()[0];
 
-    // The displacements of the cells' dofs, read once (from the ghosted
-    // vector in parallel), so that the threads only read a plain array.
+    // The displacements of the cells' dofs, read once (in parallel runs
+    // with the entries of other processes fetched first), so that the
+    // threads only read a plain array.
     std::vector<double> cell_values(geometry.dof_indices.size());
     if (direct_vectors)
       {
@@ -145,6 +150,20 @@ namespace SoftRobot
           cell_values[k] = (geometry.vector_positions[k] >= 0) ?
                              u_values[geometry.vector_positions[k]] :
                              0.;
+      }
+    else if (distributed_vectors)
+      {
+        ghost_displacements->Import(u.trilinos_vector(), *ghost_import, Insert);
+        ghost_forces->PutScalar(0.);
+        const double *u_values     = u.trilinos_vector()[0];
+        const double *ghost_values = ghost_displacements->Values();
+        for (std::size_t k = 0; k < cell_values.size(); ++k)
+          {
+            const int position = geometry.distributed_vector_positions[k];
+            cell_values[k]     = (position >= 0)  ? u_values[position] :
+                                 (position == -1) ? 0. :
+                                                    ghost_values[-2 - position];
+          }
       }
     else
       {
@@ -410,11 +429,23 @@ namespace SoftRobot
           add_with_direct_addresses(local);
           return;
         }
+      if (distributed_vectors)
+        {
+          const int *position =
+            &geometry.distributed_vector_positions[local.cell * dofs_per_cell];
+          double *ghost_values = ghost_forces->Values();
+          for (unsigned int i = 0; i < dofs_per_cell; ++i)
+            if (position[i] >= 0)
+              force_values[position[i]] += local.force(i);
+            else if (position[i] <= -2)
+              ghost_values[-2 - position[i]] += local.force(i);
+        }
+      else if (direct_addresses)
+        constraints.distribute_local_to_global(local.force,
+                                               local.dof_indices,
+                                               internal_force);
       if (direct_addresses)
         {
-          constraints.distribute_local_to_global(local.force,
-                                                 local.dof_indices,
-                                                 internal_force);
           if (local.with_matrix)
             add_matrix(local, local.matrix, matrix_values, system_matrix);
           if (local.with_damping)
@@ -522,8 +553,19 @@ namespace SoftRobot
     if (with_damping)
       next_damping_matrix.compress(VectorOperation::add);
     // (In serial runs the vector was not touched through deal.II, and one
-    // process has nothing to exchange.)
-    if (!direct_vectors)
+    // process has nothing to exchange; in parallel runs with direct
+    // addresses the forces of other processes' dofs go to their owners in
+    // the exchange set up by setup_cell_geometry().)
+    if (distributed_vectors)
+      {
+        const int error =
+          internal_force.trilinos_vector().Export(*ghost_forces,
+                                                  *ghost_import,
+                                                  Add);
+        AssertThrow(error == 0,
+                    ExcMessage("Sending the interface forces failed."));
+      }
+    else if (!direct_vectors)
       internal_force.compress(VectorOperation::add);
 
     result.strain_energy =

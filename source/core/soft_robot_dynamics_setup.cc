@@ -23,7 +23,10 @@
 #include <deal.II/lac/trilinos_precondition.h>
 #include <Amesos_BaseSolver.h>
 #include <Epetra_CrsMatrix.h>
+#include <Epetra_Import.h>
 #include <Epetra_LinearProblem.h>
+#include <Epetra_Map.h>
+#include <Epetra_Vector.h>
 #include <deal.II/numerics/vector_tools.h>
 #include <filesystem>
 #include <iomanip>
@@ -546,38 +549,44 @@ namespace SoftRobot
     // into those searches). The two matrices share their sparsity pattern
     // and so their storage layout, which is checked. In parallel runs the
     // rows of this process have addresses; the few rows of a cell that
-    // another process owns (on the interface) still go through Epetra,
-    // and the vectors through AffineConstraints.
-    bool only_fixed_components = true;
+    // another process owns (on the interface) still go through Epetra.
+    // The vectors' entries of those rows are collected in a small ghost
+    // vector and sent to their owners in one exchange whose pattern is set
+    // up here once. All processes take the same decision, since setting up
+    // that exchange is a collective operation.
+    ghost_map.reset();
+    ghost_import.reset();
+    ghost_displacements.reset();
+    ghost_forces.reset();
+    bool usable = true;
     for (const auto &line : constraints.get_lines())
-      only_fixed_components = only_fixed_components && line.entries.empty() &&
-                              line.inhomogeneity == 0.;
+      usable = usable && line.entries.empty() && line.inhomogeneity == 0.;
     int    *row_offsets = nullptr, *columns = nullptr;
     double *values      = nullptr;
     const Epetra_CrsMatrix &matrix = system_matrix.trilinos_matrix();
     const bool serial = (Utilities::MPI::n_mpi_processes(mpi_communicator) == 1);
-    if (!only_fixed_components ||
-        matrix.ExtractCrsDataPointers(row_offsets, columns, values) != 0)
-      return;
-    if (has_damping)
+    usable =
+      usable && matrix.ExtractCrsDataPointers(row_offsets, columns, values) == 0;
+    if (usable && has_damping)
       {
         int    *damping_offsets = nullptr, *damping_columns = nullptr;
         double *damping_values  = nullptr;
         const Epetra_CrsMatrix &damping = damping_matrix.trilinos_matrix();
-        if (damping.ExtractCrsDataPointers(damping_offsets,
-                                           damping_columns,
-                                           damping_values) != 0 ||
-            !damping.RowMap().SameAs(matrix.RowMap()) ||
-            !damping.ColMap().SameAs(matrix.ColMap()) ||
-            damping.NumMyNonzeros() != matrix.NumMyNonzeros() ||
-            !std::equal(columns,
-                        columns + matrix.NumMyNonzeros(),
-                        damping_columns) ||
-            !std::equal(row_offsets,
-                        row_offsets + matrix.NumMyRows() + 1,
-                        damping_offsets))
-          return;
+        usable = damping.ExtractCrsDataPointers(damping_offsets,
+                                                damping_columns,
+                                                damping_values) == 0 &&
+                 damping.RowMap().SameAs(matrix.RowMap()) &&
+                 damping.ColMap().SameAs(matrix.ColMap()) &&
+                 damping.NumMyNonzeros() == matrix.NumMyNonzeros() &&
+                 std::equal(columns,
+                            columns + matrix.NumMyNonzeros(),
+                            damping_columns) &&
+                 std::equal(row_offsets,
+                            row_offsets + matrix.NumMyRows() + 1,
+                            damping_offsets);
       }
+    if (Utilities::MPI::min(usable ? 1 : 0, mpi_communicator) == 0)
+      return;
     const Epetra_BlockMap &vector_map = current.u.trilinos_vector().Map();
     const unsigned int n = geometry.dofs_per_cell;
     geometry.matrix_positions.resize(geometry.dof_indices.size() * n);
@@ -621,6 +630,40 @@ namespace SoftRobot
                   -1 :
                   position(dofs[i], dofs[j]);
           }
+      }
+    if (serial)
+      return;
+
+    // The ghost vectors: the free dofs of this process's cells that another
+    // process owns, in increasing order.
+    std::vector<TrilinosWrappers::types::int_type> ghosts;
+    for (const types::global_dof_index dof : geometry.dof_indices)
+      if (!locally_owned_dofs.is_element(dof) && !constraints.is_constrained(dof))
+        ghosts.push_back(static_cast<TrilinosWrappers::types::int_type>(dof));
+    std::sort(ghosts.begin(), ghosts.end());
+    ghosts.erase(std::unique(ghosts.begin(), ghosts.end()), ghosts.end());
+    ghost_map = std::make_unique<Epetra_Map>(-1,
+                                             static_cast<int>(ghosts.size()),
+                                             ghosts.data(),
+                                             0,
+                                             vector_map.Comm());
+    ghost_import        = std::make_unique<Epetra_Import>(*ghost_map, vector_map);
+    ghost_displacements = std::make_unique<Epetra_Vector>(*ghost_map);
+    ghost_forces        = std::make_unique<Epetra_Vector>(*ghost_map);
+    geometry.distributed_vector_positions.resize(geometry.dof_indices.size());
+    for (std::size_t k = 0; k < geometry.dof_indices.size(); ++k)
+      {
+        const types::global_dof_index dof = geometry.dof_indices[k];
+        if (constraints.is_constrained(dof))
+          geometry.distributed_vector_positions[k] = -1;
+        else if (locally_owned_dofs.is_element(dof))
+          geometry.distributed_vector_positions[k] =
+            vector_map.LID(static_cast<TrilinosWrappers::types::int_type>(dof));
+        else
+          geometry.distributed_vector_positions[k] =
+            -2 - static_cast<int>(
+                   std::lower_bound(ghosts.begin(), ghosts.end(), dof) -
+                   ghosts.begin());
       }
   }
 

@@ -228,6 +228,9 @@ namespace SoftRobot
           }
         else if (!modified)
           prepare_linear_solver(system_matrix);
+        // The forces of the current iterate; a rejected trial must not
+        // stand for it in the tests above.
+        const AssemblyResult assembly_at_iterate = assembly;
         residual *= -1.;
         const unsigned int linear_iterations =
           solve_prepared_system(residual, update);
@@ -338,6 +341,7 @@ namespace SoftRobot
         if (!accepted && modified && !tangent_is_current)
           {
             // The old matrix led nowhere: rebuild it here and try again.
+            assembly        = assembly_at_iterate;
             rebuild_tangent = true;
             continue;
           }
