@@ -154,7 +154,7 @@ namespace SoftRobot
     else if (distributed_vectors)
       {
         ghost_displacements->Import(u.trilinos_vector(), *ghost_import, Insert);
-        ghost_forces->PutScalar(0.);
+        ghost_forces->PutScalar(0.); // the sums start here too
         const double *u_values     = u.trilinos_vector()[0];
         const double *ghost_values = ghost_displacements->Values();
         for (std::size_t k = 0; k < cell_values.size(); ++k)
@@ -439,13 +439,6 @@ namespace SoftRobot
               force_values[position[i]] += local.force(i);
             else if (position[i] <= -2)
               ghost_values[-2 - position[i]] += local.force(i);
-        }
-      else if (direct_addresses)
-        constraints.distribute_local_to_global(local.force,
-                                               local.dof_indices,
-                                               internal_force);
-      if (direct_addresses)
-        {
           if (local.with_matrix)
             add_matrix(local, local.matrix, matrix_values, system_matrix);
           if (local.with_damping)
