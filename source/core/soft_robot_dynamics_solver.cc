@@ -275,7 +275,7 @@ namespace SoftRobot
         // and the tangent is rebuilt at once. (Halving it cost up to six
         // residual assemblies; in the planar pendulum it happened in about
         // every third step, and a quarter of these searches failed
-        // altogether. Without them the scene needs 8 % fewer residual
+        // altogether. Without them the scene needs 7 % fewer residual
         // assemblies, and slightly fewer iterations and factorizations.)
         double             step_length = 1.;
         bool               accepted    = false;
