@@ -12,7 +12,11 @@
 #include <core/soft_robot_dynamics.h>
 #include <cstdlib>
 #include <deal.II/base/mpi.h>
+#include <filesystem>
+#include <fstream>
 #include <gtest/gtest.h>
+#include <regex>
+#include <sstream>
 #include <string>
 
 using namespace dealii;
@@ -52,4 +56,85 @@ TEST(MPI, PartitionedRunMatchesSerialRun)
             << std::endl;
   EXPECT_EQ(steps, 10u);
   EXPECT_LE(worst, 1e-7 * amplitude);
+}
+
+
+
+// @sect3{The parallel run's VTU output}
+//
+// The whole run of the same scene on all processes, with its VTU output:
+// each process's writing thread writes its own piece of the mesh, and
+// process 0 the PVTU records and the PVD record. At every output time the
+// PVD record must name a PVTU record, that record one piece per process,
+// and the pieces together must hold every cell of the mesh once (the 12 x 3
+// quadratic cells are written as 2 x 2 patches each).
+namespace
+{
+  std::string
+  file_contents(const std::filesystem::path &path)
+  {
+    std::ifstream     file(path);
+    std::stringstream contents;
+    contents << file.rdbuf();
+    return contents.str();
+  }
+
+  std::vector<std::string>
+  attribute_values(const std::string &text, const std::string &attribute)
+  {
+    const std::regex         pattern(attribute + "=\"([^\"]*)\"");
+    std::vector<std::string> values;
+    for (auto match = std::sregex_iterator(text.begin(), text.end(), pattern);
+         match != std::sregex_iterator();
+         ++match)
+      values.push_back((*match)[1]);
+    return values;
+  }
+} // namespace
+
+TEST(MPI, OutputHasOnePiecePerProcess)
+{
+  const char *root = std::getenv("SOFT_ROBOT_SOURCE_DIR");
+  ASSERT_NE(root, nullptr);
+  Parameters::AllParameters parameters;
+  parameters.read_file(std::string(root) + "/tests/cli/two_processes.prm");
+  const std::filesystem::path directory =
+    std::filesystem::absolute("mpi_consistency_output");
+  parameters.output_directory = directory.string();
+
+  const unsigned int n_processes =
+    Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD);
+  if (Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0)
+    std::filesystem::remove_all(directory);
+  MPI_Barrier(MPI_COMM_WORLD);
+  {
+    SoftRobotDynamics<2> run(parameters, MPI_COMM_WORLD);
+    run.run();
+  }
+  MPI_Barrier(MPI_COMM_WORLD);
+  if (Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) != 0)
+    return;
+
+  const std::vector<std::string> records =
+    attribute_values(file_contents(directory / "solution.pvd"), "file");
+  ASSERT_EQ(records.size(), 3u); // t = 0, 0.05 and 0.1 s
+  for (unsigned int k = 0; k < records.size(); ++k)
+    {
+      const std::string stem = "solution_0000" + std::to_string(k);
+      EXPECT_EQ(records[k], stem + ".pvtu");
+      const std::vector<std::string> pieces =
+        attribute_values(file_contents(directory / records[k]), "Source");
+      ASSERT_EQ(pieces.size(), n_processes);
+      unsigned int cells = 0;
+      for (unsigned int rank = 0; rank < n_processes; ++rank)
+        {
+          EXPECT_EQ(pieces[rank], stem + "." + std::to_string(rank) + ".vtu");
+          const std::vector<std::string> counts =
+            attribute_values(file_contents(directory / pieces[rank]),
+                             "NumberOfCells");
+          ASSERT_EQ(counts.size(), 1u) << pieces[rank];
+          cells += std::stoul(counts[0]);
+        }
+      EXPECT_EQ(cells, 12u * 3u * 4u) << records[k];
+    }
 }

@@ -385,29 +385,21 @@ namespace SoftRobot
                   TrilinosWrappers::MPI::Vector             &step) const;
     void
     output_results(const unsigned int output_index);
-    // Waits for the thread that writes VTU files in serial runs.
+    // Waits for the thread that writes the VTU files.
     void
     finish_output();
-    // What output_results() hands to the writing: the time, the step and
-    // output numbers, the PVD record up to this output, and in serial runs
-    // copies of the nodal values.
-    struct OutputJob
-    {
-      double                                      time         = 0.;
-      unsigned int                                cycle        = 0;
-      unsigned int                                output_index = 0;
-      std::vector<std::pair<double, std::string>> pvd_records;
-      Vector<double>                              u, v, a;
-    };
-    template <typename VectorType>
+    // What output_results() hands to the writing thread: the DataOut object
+    // with all fields, the time, the output's number, the PVD record up to
+    // this output, the number of MPI processes and this one's rank (defined
+    // in soft_robot_dynamics_output.cc).
+    struct OutputJob;
     void
-    write_output(const OutputJob  &job,
-                 const VectorType &u,
-                 const VectorType &v,
-                 const VectorType &a) const;
-    std::thread output_writer;
-    std::string output_error;
-    double      background_output_seconds = 0.;
+    write_output(OutputJob &job) const;
+    // The job the writing thread works on; released by finish_output().
+    std::shared_ptr<OutputJob> output_job;
+    std::thread                output_writer;
+    std::string                output_error;
+    double                     background_output_seconds = 0.;
     void
     open_trajectory_file();
     void

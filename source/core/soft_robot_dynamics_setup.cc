@@ -916,7 +916,8 @@ namespace SoftRobot
       1024.;
     std::map<std::string, double> sections =
       computing_timer.get_summary_data(TimerOutput::total_wall_time);
-    if (background_output_seconds > 0.)
+    // (The same sections on every process: the maxima below are collective.)
+    if (Utilities::MPI::max(background_output_seconds, mpi_communicator) > 0.)
       sections["Output (writing thread)"] = background_output_seconds;
     for (auto &[name, seconds] : sections)
       seconds = Utilities::MPI::max(seconds, mpi_communicator);
