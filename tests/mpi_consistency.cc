@@ -138,3 +138,52 @@ TEST(MPI, OutputHasOnePiecePerProcess)
       EXPECT_EQ(cells, 12u * 3u * 4u) << records[k];
     }
 }
+
+
+
+// @sect3{A failed write stops every process}
+//
+// The same run, but the last process cannot write its piece of the second
+// output (a directory stands where the file should go). Its writing thread
+// records the failure; at the next output every process must stop with an
+// exception -- the failing one with the reason, the others saying that
+// another process failed -- instead of going on or waiting for the failed
+// process in a collective operation.
+TEST(MPI, OutputFailureStopsEveryProcess)
+{
+  const char *root = std::getenv("SOFT_ROBOT_SOURCE_DIR");
+  ASSERT_NE(root, nullptr);
+  Parameters::AllParameters parameters;
+  parameters.read_file(std::string(root) + "/tests/cli/two_processes.prm");
+  const std::filesystem::path directory =
+    std::filesystem::absolute("mpi_consistency_failed_output");
+  parameters.output_directory = directory.string();
+
+  const unsigned int n_processes =
+    Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD);
+  const unsigned int rank = Utilities::MPI::this_mpi_process(MPI_COMM_WORLD);
+  const std::string  blocked =
+    "solution_00001." + std::to_string(n_processes - 1) + ".vtu";
+  if (rank == 0)
+    {
+      std::filesystem::remove_all(directory);
+      std::filesystem::create_directories(directory / blocked);
+    }
+  MPI_Barrier(MPI_COMM_WORLD);
+
+  std::string message;
+  try
+    {
+      SoftRobotDynamics<2> run(parameters, MPI_COMM_WORLD);
+      run.run();
+    }
+  catch (const std::exception &error)
+    {
+      message = error.what();
+    }
+  EXPECT_NE(message.find(rank == n_processes - 1 ?
+                           "writing the output at t = 0.05" :
+                           "writing the output failed on another MPI process"),
+            std::string::npos)
+    << "process " << rank << ": '" << message << "'";
+}
