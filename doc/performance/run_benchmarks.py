@@ -140,7 +140,8 @@ def tip_frequency(output):
 
 def output_seconds(s):
     """The output's time in the time loop, and that of the thread that
-    writes the files in serial runs."""
+    writes the files (missing in the statistics of older runs' parallel
+    cases)."""
     foreground = s["sections"].get("Output", 0.)
     thread = s["sections"].get("Output (writing thread)")
     return (f"{foreground:.2f}" if thread is None
@@ -327,9 +328,10 @@ def write_report(path, results, calculix, run):
                  "process as this script measures it, with the loading of the "
                  "libraries, MPI's start and the spectral analysis at the end. "
                  "Cases run one after the other on an otherwise idle machine. "
-                 "Output is the output's time in the time loop; in serial runs "
-                 "a thread of its own writes the files meanwhile (its time in "
-                 "parentheses). Newton/step "
+                 "Output is the output's time in the time loop (the cell data "
+                 "and the hand-over of the fields); a thread of its own, one per "
+                 "process, builds and writes the files meanwhile (its time in "
+                 "parentheses, the largest over the processes). Newton/step "
                  "counts all iterations, those with an old tangent included. "
                  "Assembly is the residual and matrix assemblies; solver set-up "
                  "is the sparse factorizations (or multigrid set-ups); solve is "
