@@ -70,6 +70,23 @@ TEST(MPI, PartitionedRunMatchesSerialRun)
 // quadratic cells are written as 2 x 2 patches each).
 namespace
 {
+  // This file's scene, with its output in a directory of the given name
+  // where the test runs; process 0 removes what an earlier run left there.
+  Parameters::AllParameters
+  scene_writing_to(const std::string &directory_name)
+  {
+    const char *root = std::getenv("SOFT_ROBOT_SOURCE_DIR");
+    AssertThrow(root != nullptr,
+                ExcMessage("SOFT_ROBOT_SOURCE_DIR is not set"));
+    Parameters::AllParameters parameters;
+    parameters.read_file(std::string(root) + "/tests/cli/two_processes.prm");
+    parameters.output_directory =
+      std::filesystem::absolute(directory_name).string();
+    if (Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0)
+      std::filesystem::remove_all(parameters.output_directory);
+    return parameters;
+  }
+
   std::string
   file_contents(const std::filesystem::path &path)
   {
@@ -94,18 +111,11 @@ namespace
 
 TEST(MPI, OutputHasOnePiecePerProcess)
 {
-  const char *root = std::getenv("SOFT_ROBOT_SOURCE_DIR");
-  ASSERT_NE(root, nullptr);
-  Parameters::AllParameters parameters;
-  parameters.read_file(std::string(root) + "/tests/cli/two_processes.prm");
-  const std::filesystem::path directory =
-    std::filesystem::absolute("mpi_consistency_output");
-  parameters.output_directory = directory.string();
-
-  const unsigned int n_processes =
+  const Parameters::AllParameters parameters =
+    scene_writing_to("mpi_consistency_output");
+  const std::filesystem::path directory = parameters.output_directory;
+  const unsigned int          n_processes =
     Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD);
-  if (Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0)
-    std::filesystem::remove_all(directory);
   MPI_Barrier(MPI_COMM_WORLD);
   {
     SoftRobotDynamics<2> run(parameters, MPI_COMM_WORLD);
@@ -151,24 +161,16 @@ TEST(MPI, OutputHasOnePiecePerProcess)
 // process in a collective operation.
 TEST(MPI, OutputFailureStopsEveryProcess)
 {
-  const char *root = std::getenv("SOFT_ROBOT_SOURCE_DIR");
-  ASSERT_NE(root, nullptr);
-  Parameters::AllParameters parameters;
-  parameters.read_file(std::string(root) + "/tests/cli/two_processes.prm");
-  const std::filesystem::path directory =
-    std::filesystem::absolute("mpi_consistency_failed_output");
-  parameters.output_directory = directory.string();
-
-  const unsigned int n_processes =
+  const Parameters::AllParameters parameters =
+    scene_writing_to("mpi_consistency_failed_output");
+  const std::filesystem::path directory = parameters.output_directory;
+  const unsigned int          n_processes =
     Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD);
   const unsigned int rank = Utilities::MPI::this_mpi_process(MPI_COMM_WORLD);
   const std::string  blocked =
     "solution_00001." + std::to_string(n_processes - 1) + ".vtu";
   if (rank == 0)
-    {
-      std::filesystem::remove_all(directory);
-      std::filesystem::create_directories(directory / blocked);
-    }
+    std::filesystem::create_directories(directory / blocked);
   MPI_Barrier(MPI_COMM_WORLD);
 
   std::string message;
@@ -181,9 +183,10 @@ TEST(MPI, OutputFailureStopsEveryProcess)
     {
       message = error.what();
     }
-  EXPECT_NE(message.find(rank == n_processes - 1 ?
-                           "writing the output at t = 0.05" :
-                           "writing the output failed on another MPI process"),
+  EXPECT_NE(message.find(
+              rank == n_processes - 1
+                ? "writing the output at t = 0.05"
+                : "writing the output failed on another MPI process"),
             std::string::npos)
     << "process " << rank << ": '" << message << "'";
 }
