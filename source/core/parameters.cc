@@ -654,9 +654,10 @@ namespace SoftRobot
                         Patterns::Selection("KLU|MUMPS"),
                         "The sparse direct solver of `Solver = Direct`, "
                         "through Trilinos Amesos: KLU (left-looking, the "
-                        "faster one below about 8,000 unknowns) or MUMPS "
-                        "(multifrontal; twice as fast as KLU at 35,000 "
-                        "unknowns, with less memory).");
+                        "faster one on the bellows meshes up to some 20,000 "
+                        "unknowns) or MUMPS (multifrontal, for larger "
+                        "meshes and quadratic elements: twice as fast as KLU "
+                        "at 35,000 unknowns, with less memory).");
       // The linear solves are the inner iteration of Newton's method, whose
       // own test on the true residual decides when a step has converged: a
       // linear solve only has to give a direction that is good enough.
