@@ -564,6 +564,10 @@ namespace SoftRobot
     std::unique_ptr<Amesos_BaseSolver>                 direct_factorization;
     const void                                        *analysed_matrix = nullptr;
     std::unique_ptr<TrilinosWrappers::PreconditionAMG> amg_preconditioner;
+    // The matrix object the hierarchy was built for, and the near null
+    // space it was given (the rigid-body modes, one column after another).
+    const TrilinosWrappers::SparseMatrix *amg_matrix = nullptr;
+    std::vector<double>                   amg_null_space;
     const TrilinosWrappers::SparseMatrix              *prepared_matrix = nullptr;
     State                          current;
     State                          previous;

@@ -9,6 +9,7 @@
 #include <Epetra_LinearProblem.h>
 #include <Epetra_MultiVector.h>
 #include <Teuchos_ParameterList.hpp>
+#include <ml_MultiLevelPreconditioner.h>
 #include <cmath>
 #include <cstdlib>
 #include <cxxabi.h>
@@ -556,6 +557,43 @@ namespace SoftRobot
       {
         TimerOutput::Scope timer_section(computing_timer,
                                          "Preconditioner setup");
+        // ML's aggregates -- which unknowns each coarse unknown stands for
+        // -- follow from the sparsity pattern, which never changes, and
+        // from the strength of the couplings, which at the default
+        // threshold counts nearly every coupling. After the first matrix
+        // of a run, ML therefore recomputes the hierarchy on the aggregates
+        // it has (ReComputePreconditioner()): the prolongators, coarse
+        // matrices, smoothers and the coarse factorization come from the
+        // new matrix, and only the aggregation is skipped, which on the
+        // bellows takes a sixth to a quarter off a set-up's time
+        // (doc/performance_discussion.md, item 25). ML would also keep the
+        // old matrix's diagonal and the estimate of its largest eigenvalue,
+        // which it caches with the finest level and does not clean there;
+        // with them it smooths the prolongators and sets up the Chebyshev
+        // smoother. They are cleared first (-666.666 is ML's mark for "not
+        // computed"), so that the recomputed hierarchy comes from the new
+        // matrix alone, on the old aggregates. (Without this,
+        // CG diverges in the 1D run of tests/modified_newton.cc after four
+        // time-step cut-backs in a row have multiplied the mass's share of
+        // the matrix by 256.)
+        if (amg_preconditioner != nullptr && amg_matrix == &matrix)
+          {
+            auto &multilevel =
+              dynamic_cast<ML_Epetra::MultiLevelPreconditioner &>(
+                const_cast<Epetra_Operator &>(
+                  amg_preconditioner->trilinos_operator()));
+            ML          *ml   = const_cast<ML *>(multilevel.GetML());
+            ML_Operator &fine = ml->Amat[ml->ML_finest_level];
+            if (fine.diagonal != nullptr)
+              ML_DVector_Destroy(&fine.diagonal);
+            fine.diagonal   = nullptr;
+            fine.lambda_max = -666.666;
+            fine.lambda_min = -666.666;
+            AssertThrow(multilevel.ReComputePreconditioner() == 0,
+                        ExcMessage("ML could not recompute the multigrid "
+                                   "hierarchy."));
+            return;
+          }
         TrilinosWrappers::PreconditionAMG::AdditionalData data;
         data.elliptic              = true;
         data.higher_order_elements = (parameters.degree > 1);
@@ -567,17 +605,24 @@ namespace SoftRobot
         data.set_parameters(ml_parameters,
                             constant_modes,
                             matrix.trilinos_matrix());
-        const Epetra_Map  &map = matrix.trilinos_matrix().DomainMap();
-        Epetra_MultiVector modes(map, rigid_body_modes.size());
+        // The near null space, one column per mode, in the layout of an
+        // Epetra_MultiVector. ML keeps the pointer in its parameter list, so
+        // the array lives as long as the hierarchy.
+        const unsigned int n_local =
+          matrix.trilinos_matrix().DomainMap().NumMyElements();
+        amg_null_space.assign(rigid_body_modes.size() * n_local, 0.);
         for (unsigned int k = 0; k < rigid_body_modes.size(); ++k)
-          for (unsigned int i = 0; i < rigid_body_modes[k].size(); ++i)
-            modes[k][i] = rigid_body_modes[k][i];
+          std::copy(rigid_body_modes[k].begin(),
+                    rigid_body_modes[k].end(),
+                    amg_null_space.begin() + k * n_local);
         ml_parameters.set("null space: type", "pre-computed");
-        ml_parameters.set("null space: dimension", modes.NumVectors());
-        ml_parameters.set("null space: vectors", modes.Values());
+        ml_parameters.set("null space: dimension",
+                          static_cast<int>(rigid_body_modes.size()));
+        ml_parameters.set("null space: vectors", amg_null_space.data());
         amg_preconditioner =
           std::make_unique<TrilinosWrappers::PreconditionAMG>();
         amg_preconditioner->initialize(matrix, ml_parameters);
+        amg_matrix = &matrix;
       }
   }
 
