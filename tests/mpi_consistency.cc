@@ -112,7 +112,7 @@ namespace
 TEST(MPI, OutputHasOnePiecePerProcess)
 {
   const Parameters::AllParameters parameters =
-    scene_writing_to("mpi_consistency_output");
+    scene_writing_to("test_output/mpi_output");
   const std::filesystem::path directory = parameters.output_directory;
   const unsigned int          n_processes =
     Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD);
@@ -162,7 +162,7 @@ TEST(MPI, OutputHasOnePiecePerProcess)
 TEST(MPI, OutputFailureStopsEveryProcess)
 {
   const Parameters::AllParameters parameters =
-    scene_writing_to("mpi_consistency_failed_output");
+    scene_writing_to("test_output/mpi_failed_output");
   const std::filesystem::path directory = parameters.output_directory;
   const unsigned int          n_processes =
     Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD);
