@@ -559,15 +559,16 @@ namespace SoftRobot
     double newer_stiffness_time = -std::numeric_limits<double>::max();
     // The prepared linear solver: the sparse factorization (Amesos KLU or
     // MUMPS, whose symbolic analysis of the sparsity pattern is done once
-    // per matrix object) or the multigrid hierarchy.
+    // per matrix object) or the multigrid hierarchy (whose aggregates are
+    // likewise computed once per matrix object); `analysed_matrix` is the
+    // Epetra matrix of that object.
     std::unique_ptr<Epetra_LinearProblem>              direct_problem;
     std::unique_ptr<Amesos_BaseSolver>                 direct_factorization;
     const void                                        *analysed_matrix = nullptr;
     std::unique_ptr<TrilinosWrappers::PreconditionAMG> amg_preconditioner;
-    // The matrix object the hierarchy was built for, and the near null
-    // space it was given (the rigid-body modes, one column after another).
-    const TrilinosWrappers::SparseMatrix *amg_matrix = nullptr;
-    std::vector<double>                   amg_null_space;
+    // The near null space the hierarchy was given (the rigid-body modes,
+    // one column after another).
+    std::vector<double> amg_null_space;
     const TrilinosWrappers::SparseMatrix              *prepared_matrix = nullptr;
     State                          current;
     State                          previous;

@@ -576,7 +576,8 @@ namespace SoftRobot
         // CG diverges in the 1D run of tests/modified_newton.cc after four
         // time-step cut-backs in a row have multiplied the mass's share of
         // the matrix by 256.)
-        if (amg_preconditioner != nullptr && amg_matrix == &matrix)
+        if (amg_preconditioner != nullptr &&
+            analysed_matrix == &matrix.trilinos_matrix())
           {
             auto &multilevel =
               dynamic_cast<ML_Epetra::MultiLevelPreconditioner &>(
@@ -622,7 +623,7 @@ namespace SoftRobot
         amg_preconditioner =
           std::make_unique<TrilinosWrappers::PreconditionAMG>();
         amg_preconditioner->initialize(matrix, ml_parameters);
-        amg_matrix = &matrix;
+        analysed_matrix = &matrix.trilinos_matrix();
       }
   }
 
