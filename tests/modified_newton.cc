@@ -37,6 +37,7 @@ namespace
     unsigned int                     factorizations    = 0;
     unsigned int                     linear_iterations = 0;
     std::string                      linear_solver;
+    double                           operator_complexity = 0.;
   };
 
   // The tip displacement after every step, for the given entries of the
@@ -84,10 +85,11 @@ namespace
         const Tensor<1, dim> u = body.tip_motion().first;
         run.tip.emplace_back(u.begin_raw(), u.end_raw());
       }
-    run.newton_iterations = body.n_newton_iterations();
-    run.factorizations    = body.n_tangent_updates();
-    run.linear_iterations = body.n_linear_iterations();
-    run.linear_solver     = body.linear_solver_in_use();
+    run.newton_iterations   = body.n_newton_iterations();
+    run.factorizations      = body.n_tangent_updates();
+    run.linear_iterations   = body.n_linear_iterations();
+    run.linear_solver       = body.linear_solver_in_use();
+    run.operator_complexity = body.multigrid_operator_complexity();
     return run;
   }
 
@@ -211,6 +213,11 @@ TYPED_TEST(ModifiedNewtonTest, InexactSolvesGiveTheMotionOfExactOnes)
   EXPECT_GE(direct.tip.size(), 6u);
   EXPECT_EQ(direct.linear_solver, "Amesos_Klu");
   EXPECT_EQ(inexact.linear_solver, "CG with ML");
+  // The hierarchy has a coarse level below the finest, and its matrices
+  // together hold fewer nonzeros than three times the finest.
+  EXPECT_EQ(direct.operator_complexity, 0.);
+  EXPECT_GT(inexact.operator_complexity, 1.);
+  EXPECT_LT(inexact.operator_complexity, 3.);
   EXPECT_LT(difference(direct, inexact), 1e-9);
   EXPECT_LT(difference(direct, tight), 1e-9);
   EXPECT_LE(inexact.newton_iterations, 1.25 * tight.newton_iterations);

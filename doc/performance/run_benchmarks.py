@@ -403,6 +403,13 @@ def write_report(path, results, calculix, run):
         """Nanoseconds per unknown per CG iteration (the solves' time)."""
         return 1e9 * section(s, "Linear solve") / max(s["linear_iterations"], 1) / s["dofs"]
 
+    def hierarchy_nonzeros(s):
+        """The nonzeros of all the multigrid levels' matrices, or None for
+        a run without them in its statistics."""
+        if not s.get("matrix_nonzeros") or not s.get("multigrid_operator_complexity"):
+            return None
+        return s["matrix_nonzeros"] * s["multigrid_operator_complexity"]
+
     levels = [level for level in SERIES_LEVELS
               if any(f"{prefix}quarter_{level}_window" in by_name
                      for prefix in SERIES_SOLVER)]
@@ -423,15 +430,21 @@ def write_report(path, results, calculix, run):
                      "for CG with multigrid, also on two MPI processes (one "
                      "thread each: both cores in the solver too). For CG on "
                      "one process also the "
-                     "iterations per solve and the solves' time per unknown "
-                     "and CG iteration, which would stay constant if the "
+                     "iterations per solve, the solves' time per unknown "
+                     "and CG iteration, the matrix's nonzeros per unknown, "
+                     "ML's operator complexity (the nonzeros of all the "
+                     "hierarchy's matrices over those of the finest) and the "
+                     "solves' time per nonzero of the hierarchy and CG "
+                     "iteration, which would stay constant if the "
                      "machine's memory were equally fast for all sizes.\n")
         lines.append("| mesh | dofs | KLU: ms per Newton iteration | exponent "
                      "| MUMPS: ms per Newton iteration | exponent "
                      "| AMG: ms per Newton iteration | exponent "
                      "| AMG, 2 processes: ms per Newton iteration | exponent "
-                     "| CG iterations per solve | ns per dof and CG iteration |")
-        lines.append("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|")
+                     "| CG iterations per solve | ns per dof and CG iteration "
+                     "| nonzeros per dof | operator complexity "
+                     "| ns per hierarchy nonzero and CG iteration |")
+        lines.append("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|")
         previous = None
         first = {}
         last = {}
@@ -455,18 +468,65 @@ def write_report(path, results, calculix, run):
             iterations = ("– | –" if not amg else
                           f"{amg['linear_iterations'] / max(amg['newton_iterations'], 1):.0f} "
                           f"| {per_cg_iteration(amg):.0f}")
+            if amg and hierarchy_nonzeros(amg):
+                iterations += (f" | {amg['matrix_nonzeros'] / amg['dofs']:.1f} "
+                               f"| {amg['multigrid_operator_complexity']:.2f} "
+                               f"| {per_cg_iteration(amg) * amg['dofs'] / hierarchy_nonzeros(amg):.2f}")
+            else:
+                iterations += " | – | – | –"
             lines.append(f"| {level} | {dofs} | {' | '.join(cells)} | {iterations} |")
             previous = now
         if "quarter_refined_window" in by_name:
             refined = by_name["quarter_refined_window"]
             lines.append(f"| coarse refined once | {refined['dofs']} "
-                         f"| {per_iteration(refined):.2f} | | | | | | | | | |")
+                         f"| {per_iteration(refined):.2f} | | | | | | | | | | | | |")
         lines.append("")
         names = {1: "KLU", 2: "MUMPS", 3: "CG+AMG", 4: "CG+AMG on 2 processes"}
         overall = [f"{names[k]} N^{math.log(last[k][1] / first[k][1]) / math.log(last[k][0] / first[k][0]):.2f} "
                    f"({first[k][2]} to {last[k][2]} mesh)"
                    for k in sorted(last) if last[k][0] > first[k][0]]
         lines.append("Over the whole series: " + ", ".join(overall) + ".\n")
+        # The CG solves' exponent taken apart: their time per Newton
+        # iteration is (CG iterations per Newton iteration) x (nonzeros of
+        # the hierarchy) x (time per hierarchy nonzero and CG iteration), so
+        # the exponent is 1 (the unknowns) plus one term per factor, which
+        # is positive where the factor grows.
+        amg_runs = [(level, by_name.get(f"amg_quarter_{level}_window")) for level in levels]
+        amg_runs = [(level, run) for level, run in amg_runs
+                    if run and hierarchy_nonzeros(run)]
+        if len(amg_runs) >= 2 and amg_runs[-1][1]["dofs"] > amg_runs[0][1]["dofs"]:
+            (first_level, a), (last_level, b) = amg_runs[0], amg_runs[-1]
+            log_n = math.log(b["dofs"] / a["dofs"])
+
+            def term(value):
+                return math.log(value(b) / value(a)) / log_n
+
+            def solves(s):
+                return section(s, "Linear solve") / max(s["newton_iterations"], 1)
+
+            def iterations(s):
+                return s["linear_iterations"] / max(s["newton_iterations"], 1)
+
+            def nonzeros_per_dof(s):
+                return hierarchy_nonzeros(s) / s["dofs"]
+
+            def per_nonzero(s):
+                return per_cg_iteration(s) * s["dofs"] / hierarchy_nonzeros(s)
+
+            lines.append(
+                f"The CG solves on one process, from the {first_level} "
+                f"to the {last_level} mesh, taken apart: their time per Newton "
+                f"iteration grows like N^{term(solves):.2f} "
+                f"({1000 * solves(a):.2f} to {1000 * solves(b):.1f} ms). "
+                f"Of the exponent's part above 1, "
+                f"{term(nonzeros_per_dof):+.3f} are the hierarchy's nonzeros per unknown "
+                f"({nonzeros_per_dof(a):.1f} to {nonzeros_per_dof(b):.1f}: the matrix's "
+                f"{a['matrix_nonzeros'] / a['dofs']:.1f} to {b['matrix_nonzeros'] / b['dofs']:.1f} "
+                f"times the operator complexity), {term(per_nonzero):+.3f} the time per "
+                f"hierarchy nonzero and CG iteration ({per_nonzero(a):.2f} to "
+                f"{per_nonzero(b):.2f} ns: the machine's memory) and "
+                f"{term(iterations):+.3f} the CG iterations per solve "
+                f"({iterations(a):.1f} to {iterations(b):.1f}).\n")
         spread = []
         same_counts = True
         for level in levels:

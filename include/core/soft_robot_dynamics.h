@@ -283,6 +283,14 @@ namespace SoftRobot
     {
       return total_linear_iterations;
     }
+    // ML's operator complexity of the multigrid hierarchy: the nonzeros
+    // of all its levels' matrices over those of the finest; zero when no
+    // hierarchy has been built (the direct solvers).
+    double
+    multigrid_operator_complexity() const
+    {
+      return amg_operator_complexity;
+    }
     // The linear solver that solved the last system: the class of the
     // Amesos solver that was created ("Amesos_Klu", "Amesos_Mumps"), or
     // "CG with ML" / "GMRES with ML"; empty before the first solve.
@@ -569,7 +577,11 @@ namespace SoftRobot
     // The near null space the hierarchy was given (the rigid-body modes,
     // one column after another).
     std::vector<double> amg_null_space;
-    const TrilinosWrappers::SparseMatrix              *prepared_matrix = nullptr;
+    // The nonzeros of all the hierarchy's level matrices together, over
+    // the nonzeros of the finest (ML's operator complexity), for the run
+    // statistics; zero until a hierarchy is built.
+    double                                amg_operator_complexity = 0.;
+    const TrilinosWrappers::SparseMatrix *prepared_matrix         = nullptr;
     State                          current;
     State                          previous;
 

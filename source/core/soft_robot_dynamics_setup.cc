@@ -929,6 +929,10 @@ namespace SoftRobot
          << "  \"dimension\": " << dim << ",\n"
          << "  \"cells\": " << triangulation.n_global_active_cells() << ",\n"
          << "  \"dofs\": " << dof_handler.n_dofs() << ",\n"
+         << "  \"matrix_nonzeros\": " << system_matrix.n_nonzero_elements()
+         << ",\n"
+         << "  \"multigrid_operator_complexity\": " << amg_operator_complexity
+         << ",\n"
          << "  \"degree\": " << parameters.degree << ",\n"
          << "  \"mpi_processes\": "
          << Utilities::MPI::n_mpi_processes(mpi_communicator) << ",\n"

@@ -624,6 +624,26 @@ namespace SoftRobot
           std::make_unique<TrilinosWrappers::PreconditionAMG>();
         amg_preconditioner->initialize(matrix, ml_parameters);
         analysed_matrix = &matrix.trilinos_matrix();
+
+        // The hierarchy's size, for the run statistics: a CG iteration
+        // applies every level's matrix, so its cost follows these nonzeros
+        // (the aggregates, and with them this ratio, stay for the run).
+        ML *ml = const_cast<ML *>(
+          dynamic_cast<const ML_Epetra::MultiLevelPreconditioner &>(
+            amg_preconditioner->trilinos_operator())
+            .GetML());
+        const int step =
+          (ml->ML_coarsest_level >= ml->ML_finest_level ? 1 : -1);
+        double all_levels = 0.;
+        for (int level = ml->ML_finest_level;; level += step)
+          {
+            all_levels += ML_Operator_ComputeNumNzs(&ml->Amat[level]);
+            if (level == ml->ML_coarsest_level)
+              break;
+          }
+        amg_operator_complexity =
+          Utilities::MPI::sum(all_levels, mpi_communicator) /
+          static_cast<double>(matrix.n_nonzero_elements());
       }
   }
 
