@@ -29,6 +29,20 @@
 
 namespace SoftRobot
 {
+  namespace
+  {
+    // ML's preconditioner object behind deal.II's wrapper, whose hierarchy
+    // prepare_linear_solver() recomputes and measures.
+    ML_Epetra::MultiLevelPreconditioner &
+    multilevel_preconditioner(const TrilinosWrappers::PreconditionAMG &amg)
+    {
+      return dynamic_cast<ML_Epetra::MultiLevelPreconditioner &>(
+        const_cast<Epetra_Operator &>(amg.trilinos_operator()));
+    }
+  } // namespace
+
+
+
   // @sect4{SoftRobotDynamics::evaluate_residual}
   //
   // The HHT residual for a trial displacement $\mathbf u_{n+1}$:
@@ -579,11 +593,8 @@ namespace SoftRobot
         if (amg_preconditioner != nullptr &&
             analysed_matrix == &matrix.trilinos_matrix())
           {
-            auto &multilevel =
-              dynamic_cast<ML_Epetra::MultiLevelPreconditioner &>(
-                const_cast<Epetra_Operator &>(
-                  amg_preconditioner->trilinos_operator()));
-            ML          *ml   = const_cast<ML *>(multilevel.GetML());
+            auto &multilevel  = multilevel_preconditioner(*amg_preconditioner);
+            ML   *ml          = const_cast<ML *>(multilevel.GetML());
             ML_Operator &fine = ml->Amat[ml->ML_finest_level];
             if (fine.diagonal != nullptr)
               ML_DVector_Destroy(&fine.diagonal);
@@ -629,9 +640,7 @@ namespace SoftRobot
         // applies every level's matrix, so its cost follows these nonzeros
         // (the aggregates, and with them this ratio, stay for the run).
         ML *ml = const_cast<ML *>(
-          dynamic_cast<const ML_Epetra::MultiLevelPreconditioner &>(
-            amg_preconditioner->trilinos_operator())
-            .GetML());
+          multilevel_preconditioner(*amg_preconditioner).GetML());
         const int step =
           (ml->ML_coarsest_level >= ml->ML_finest_level ? 1 : -1);
         double all_levels = 0.;
