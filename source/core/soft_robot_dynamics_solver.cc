@@ -638,7 +638,8 @@ namespace SoftRobot
 
         // The hierarchy's size, for the run statistics: a CG iteration
         // applies every level's matrix, so its cost follows these nonzeros
-        // (the aggregates, and with them this ratio, stay for the run).
+        // (the aggregates, and with them this ratio, stay as long as the
+        // matrix object; the recomputation above keeps them).
         ML *ml = const_cast<ML *>(
           multilevel_preconditioner(*amg_preconditioner).GetML());
         const int step =
