@@ -112,11 +112,13 @@ namespace
     parameters.constants               = "";
     parameters.traction_expression     = traction;
     parameters.traction_boundary_ids   = {parameters.dimension == 3 ? 5u : 1u};
-    parameters.InitialConditions::type = "static equilibrium";
+    parameters.initial_state =
+      Parameters::InitialConditions::InitialState::static_equilibrium;
     parameters.load_steps              = 1;
     parameters.displacement_expression = "";
     parameters.velocity_expression     = "";
-    parameters.tip_region_type         = "material";
+    parameters.tip_region_type =
+      Parameters::Output::TipRegionType::material;
     parameters.tip_region_id           = 2;
     parameters.progress_interval       = 0;
     return parameters;
@@ -275,7 +277,7 @@ namespace
     const double lateral_3d = tip_stiffness<3>(half, 1, face_traction(1));
     std::cout << "3D actuator at its hanging equilibrium ("
               << quarter.by_id.at(1).silicone << ", "
-              << quarter.parameter_set << ", mu = "
+              << Parameters::name_of(quarter.parameter_set) << ", mu = "
               << quarter.by_id.at(1).shear_modulus << " kPa; "
               << quarter.mesh_file << ", " << half.mesh_file << ", degree "
               << quarter.degree << "):\n  axial stiffness   = "

@@ -73,7 +73,8 @@ TEST(BellowsScenes, EveryScenePairsItsSiliconeWithTheLibraryData)
           ASSERT_NO_THROW(parameters.read_file(scene_file(name)));
 
           EXPECT_EQ(parameters.parameter_set,
-                    calibrated ? "calibrated" : "baseline");
+                    calibrated ? Parameters::Silicone::ParameterSet::calibrated :
+                                 Parameters::Silicone::ParameterSet::baseline);
           const Parameters::Material &silicone = parameters.by_id.at(1);
           EXPECT_EQ(silicone.silicone, measured.name);
           if (calibrated)

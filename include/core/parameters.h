@@ -47,7 +47,12 @@ namespace SoftRobot
     // and whose physical surface tags become boundary ids.
     struct Geometry
     {
-      std::string  mesh_source;
+      enum class MeshSource
+      {
+        generator,
+        file
+      };
+      MeshSource   mesh_source;
       std::string  generator_name;
       std::string  generator_arguments;
       std::string  mesh_file;
@@ -68,8 +73,13 @@ namespace SoftRobot
     {
       unsigned int degree;
       unsigned int quadrature_points;
-      // "displacement" or "mean dilatation" (see the declaration).
-      std::string volumetric_formulation;
+      // How the volumetric energy enters (see the declaration).
+      enum class VolumetricFormulation
+      {
+        displacement,
+        mean_dilatation
+      };
+      VolumetricFormulation volumetric_formulation;
 
       static void
       declare_parameters(ParameterHandler &prm);
@@ -115,8 +125,13 @@ namespace SoftRobot
       double      frequency;
       double      damping_ratio;
 
+      enum class ParameterSet
+      {
+        baseline,
+        calibrated
+      };
       double
-      shear_modulus(const std::string &parameter_set) const;
+      shear_modulus(const ParameterSet parameter_set) const;
       double
       damping_coefficient() const;
     };
@@ -126,7 +141,7 @@ namespace SoftRobot
       static constexpr unsigned int max_material_id = 9;
       static constexpr unsigned int max_silicones   = 8;
 
-      std::string                     parameter_set;
+      Silicone::ParameterSet          parameter_set;
       std::map<std::string, Silicone> silicones;
       // Only the subsections whose `Name` is not empty.
       std::map<unsigned int, Material> by_id;
@@ -156,7 +171,12 @@ namespace SoftRobot
     // @sect4{Initial conditions}
     struct InitialConditions
     {
-      std::string  type;
+      enum class InitialState
+      {
+        expressions,
+        static_equilibrium
+      };
+      InitialState initial_state;
       std::string  displacement_expression;
       std::string  velocity_expression;
       unsigned int load_steps;
@@ -188,10 +208,17 @@ namespace SoftRobot
     // @sect4{Newton's method}
     struct NonlinearSolver
     {
-      unsigned int max_iterations;
-      double       absolute_tolerance;
-      double       relative_tolerance;
-      std::string  tangent_update;
+      // 'every step' is the modified Newton method, 'every iteration'
+      // Newton's method proper (see the declaration).
+      enum class TangentUpdate
+      {
+        every_step,
+        every_iteration
+      };
+      unsigned int  newton_max_iterations;
+      double        newton_absolute_tolerance;
+      double        newton_relative_tolerance;
+      TangentUpdate tangent_update;
       unsigned int acceleration_depth;
       bool         tangent_extrapolation;
       bool         line_search;
@@ -207,10 +234,21 @@ namespace SoftRobot
     // @sect4{Linear solver}
     struct LinearSolver
     {
-      std::string  type;
-      std::string  direct_solver;
-      double       relative_tolerance;
-      unsigned int max_iterations;
+      enum class LinearSolverType
+      {
+        cg,
+        gmres,
+        direct
+      };
+      enum class DirectSolverType
+      {
+        klu,
+        mumps
+      };
+      LinearSolverType linear_solver;
+      DirectSolverType direct_solver;
+      double           linear_relative_tolerance;
+      unsigned int     linear_max_iterations;
       unsigned int smoother_sweeps;
       double       aggregation_threshold;
 
@@ -225,7 +263,12 @@ namespace SoftRobot
     {
       bool         write_vtu;
       double       output_interval;
-      std::string  tip_region_type;
+      enum class TipRegionType
+      {
+        boundary,
+        material
+      };
+      TipRegionType tip_region_type;
       unsigned int tip_region_id;
       std::string  trajectory_file;
       unsigned int progress_interval;
@@ -279,6 +322,16 @@ namespace SoftRobot
       check_consistency() const;
     };
 
+    // The words of the parameter file for the options that other output
+    // (messages, run statistics) repeats.
+    std::string
+    name_of(const LinearSolver::LinearSolverType type);
+    std::string
+    name_of(const NonlinearSolver::TangentUpdate update);
+    std::string
+    name_of(const Output::TipRegionType type);
+    std::string
+    name_of(const Silicone::ParameterSet parameter_set);
   } // namespace Parameters
 } // namespace SoftRobot
 

@@ -56,6 +56,8 @@
 #ifndef soft_robot_core_soft_robot_dynamics_h
 #define soft_robot_core_soft_robot_dynamics_h
 
+#include <assembly/assembly_result.h>
+#include <core/exceptions.h>
 #include <core/parameters.h>
 #include <deal.II/base/conditional_ostream.h>
 #include <deal.II/base/function_parser.h>
@@ -94,25 +96,6 @@ class Epetra_Vector;
 namespace SoftRobot
 {
   using namespace dealii;
-
-  // @sect4{Failure of a time step}
-  //
-  // Thrown when a step cannot be completed with the current time step
-  // (Newton's method did not converge, the linear solver failed, a
-  // quadrature point was inverted). The time loop catches it and cuts the
-  // step back; only when the step would fall below its minimum does the
-  // run end with RunAborted.
-  struct StepFailure : public std::runtime_error
-  {
-    using std::runtime_error::runtime_error;
-  };
-
-  struct RunAborted : public std::runtime_error
-  {
-    using std::runtime_error::runtime_error;
-  };
-
-
 
   // @sect4{Energies of the motion}
   //
@@ -309,21 +292,6 @@ namespace SoftRobot
       TrilinosWrappers::MPI::Vector u, v, a;
       TrilinosWrappers::MPI::Vector internal_force, external_force;
       TrilinosWrappers::MPI::Vector damping_force;
-    };
-
-    // What assemble_system() computes besides the matrix and residual.
-    struct AssemblyResult
-    {
-      double strain_energy = 0.;
-      // The size of the forces that balance in the residual (internal
-      // and inertial), against which round-off is judged.
-      double force_scale = 0.;
-      // For static problems the total potential energy, which Newton's
-      // line search then decreases; not a number for the dynamic steps,
-      // whose line search decreases the norm of the residual.
-      double potential_energy     = std::numeric_limits<double>::quiet_NaN();
-      double min_jacobian         = std::numeric_limits<double>::max();
-      bool   inverted_point_found = false;
     };
 
     // The phases of one time step, in the order they are called.

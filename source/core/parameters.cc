@@ -108,7 +108,8 @@ namespace SoftRobot
     Geometry::parse_parameters(ParameterHandler &prm)
     {
       prm.enter_subsection("Geometry");
-      mesh_source          = prm.get("Mesh source");
+      mesh_source = (prm.get("Mesh source") == "file") ? MeshSource::file :
+                                                         MeshSource::generator;
       generator_name       = prm.get("Generator");
       generator_arguments  = prm.get("Generator arguments");
       mesh_file            = prm.get("Mesh file");
@@ -166,7 +167,10 @@ namespace SoftRobot
       prm.enter_subsection("Finite element");
       degree            = prm.get_integer("Polynomial degree");
       quadrature_points = prm.get_integer("Quadrature points");
-      volumetric_formulation = prm.get("Volumetric formulation");
+      volumetric_formulation =
+        (prm.get("Volumetric formulation") == "mean dilatation") ?
+          VolumetricFormulation::mean_dilatation :
+          VolumetricFormulation::displacement;
       prm.leave_subsection();
     }
 
@@ -282,9 +286,11 @@ namespace SoftRobot
 
 
     double
-    Silicone::shear_modulus(const std::string &parameter_set) const
+    Silicone::shear_modulus(const ParameterSet parameter_set) const
     {
-      return (parameter_set == "calibrated") ? calibrated_shear_modulus : c1;
+      return (parameter_set == ParameterSet::calibrated) ?
+               calibrated_shear_modulus :
+               c1;
     }
 
     double
@@ -298,7 +304,9 @@ namespace SoftRobot
     {
       silicones.clear();
       prm.enter_subsection("Silicone library");
-      parameter_set = prm.get("Parameter set");
+      parameter_set = (prm.get("Parameter set") == "calibrated") ?
+                        Silicone::ParameterSet::calibrated :
+                        Silicone::ParameterSet::baseline;
       for (unsigned int i = 1; i <= max_silicones; ++i)
         {
           prm.enter_subsection("Silicone " + std::to_string(i));
@@ -466,7 +474,9 @@ namespace SoftRobot
     InitialConditions::parse_parameters(ParameterHandler &prm)
     {
       prm.enter_subsection("Initial conditions");
-      type                    = prm.get("Type");
+      initial_state           = (prm.get("Type") == "static equilibrium") ?
+                                  InitialState::static_equilibrium :
+                                  InitialState::expressions;
       displacement_expression = prm.get("Displacement");
       velocity_expression     = prm.get("Velocity");
       load_steps              = prm.get_integer("Load steps");
@@ -624,10 +634,12 @@ namespace SoftRobot
     NonlinearSolver::parse_parameters(ParameterHandler &prm)
     {
       prm.enter_subsection("Nonlinear solver");
-      max_iterations        = prm.get_integer("Max iterations");
-      absolute_tolerance    = prm.get_double("Absolute tolerance");
-      relative_tolerance    = prm.get_double("Relative tolerance");
-      tangent_update        = prm.get("Tangent update");
+      newton_max_iterations     = prm.get_integer("Max iterations");
+      newton_absolute_tolerance = prm.get_double("Absolute tolerance");
+      newton_relative_tolerance = prm.get_double("Relative tolerance");
+      tangent_update = (prm.get("Tangent update") == "every iteration") ?
+                         TangentUpdate::every_iteration :
+                         TangentUpdate::every_step;
       acceleration_depth    = prm.get_integer("Acceleration depth");
       tangent_extrapolation = prm.get_bool("Tangent extrapolation");
       line_search           = prm.get_bool("Line search");
@@ -700,10 +712,15 @@ namespace SoftRobot
     LinearSolver::parse_parameters(ParameterHandler &prm)
     {
       prm.enter_subsection("Linear solver");
-      type                  = prm.get("Solver");
-      direct_solver         = prm.get("Direct solver");
-      relative_tolerance    = prm.get_double("Relative tolerance");
-      max_iterations        = prm.get_integer("Max iterations");
+      const std::string solver = prm.get("Solver");
+      linear_solver = (solver == "Direct") ? LinearSolverType::direct :
+                      (solver == "GMRES")  ? LinearSolverType::gmres :
+                                             LinearSolverType::cg;
+      direct_solver = (prm.get("Direct solver") == "MUMPS") ?
+                        DirectSolverType::mumps :
+                        DirectSolverType::klu;
+      linear_relative_tolerance = prm.get_double("Relative tolerance");
+      linear_max_iterations     = prm.get_integer("Max iterations");
       smoother_sweeps       = prm.get_integer("AMG smoother sweeps");
       aggregation_threshold = prm.get_double("AMG aggregation threshold");
       prm.leave_subsection();
@@ -779,7 +796,8 @@ namespace SoftRobot
                   ExcMessage("Output/Tip region must be 'boundary <id>' or "
                              "'material <id>', not '" +
                              prm.get("Tip region") + "'."));
-      tip_region_type = words[0];
+      tip_region_type = (words[0] == "boundary") ? TipRegionType::boundary :
+                                                   TipRegionType::material;
       tip_region_id   = Utilities::string_to_int(words[1]);
       prm.leave_subsection();
     }
@@ -939,7 +957,9 @@ namespace SoftRobot
                     ExcMessage(where + "Material " + std::to_string(id) +
                                "/Section must be 1 in 3D (it is the area or "
                                "thickness of the reduced 1D and 2D models)."));
-      AssertThrow(dimension == 3 || volumetric_formulation == "displacement",
+      AssertThrow(dimension == 3 ||
+                    volumetric_formulation ==
+                      VolumetricFormulation::displacement,
                   ExcMessage(where +
                              "Finite element/Volumetric formulation must be "
                              "'displacement' in " +
@@ -961,15 +981,53 @@ namespace SoftRobot
                                  "' are allowed in " +
                                  std::to_string(dimension) + "D."));
         }
-      AssertThrow(mesh_source != "file" || !mesh_file.empty(),
+      AssertThrow(mesh_source != MeshSource::file || !mesh_file.empty(),
                   ExcMessage(where + "Geometry/Mesh file must name a gmsh "
                                      "file when Mesh source = file."));
-      AssertThrow(mesh_source != "file" || std::ifstream(mesh_file),
+      AssertThrow(mesh_source != MeshSource::file || std::ifstream(mesh_file),
                   ExcMessage(where + "Geometry/Mesh file: cannot open '" +
                              mesh_file + "'."));
     }
 
 
 
+    std::string
+    name_of(const LinearSolver::LinearSolverType type)
+    {
+      switch (type)
+        {
+          case LinearSolver::LinearSolverType::cg:
+            return "CG";
+          case LinearSolver::LinearSolverType::gmres:
+            return "GMRES";
+          case LinearSolver::LinearSolverType::direct:
+            return "Direct";
+        }
+      Assert(false, ExcInternalError());
+      return "";
+    }
+
+    std::string
+    name_of(const NonlinearSolver::TangentUpdate update)
+    {
+      return (update == NonlinearSolver::TangentUpdate::every_step) ?
+               "every step" :
+               "every iteration";
+    }
+
+    std::string
+    name_of(const Output::TipRegionType type)
+    {
+      return (type == Output::TipRegionType::boundary) ? "boundary" :
+                                                         "material";
+    }
+
+    std::string
+    name_of(const Silicone::ParameterSet parameter_set)
+    {
+      return (parameter_set == Silicone::ParameterSet::calibrated) ?
+               "calibrated" :
+               "baseline";
+    }
   } // namespace Parameters
 } // namespace SoftRobot

@@ -92,7 +92,7 @@ namespace SoftRobot
 
 
   template <int dim>
-  typename SoftRobotDynamics<dim>::AssemblyResult
+  AssemblyResult
   SoftRobotDynamics<dim>::assemble_internal_force(
     const TrilinosWrappers::MPI::Vector &u,
     const bool                           with_matrix,
@@ -111,7 +111,8 @@ namespace SoftRobot
     const bool with_damping = with_matrix && has_damping && with_damping_matrix;
     const bool mean_dilatation =
       (dim == 3) &&
-      (parameters.volumetric_formulation == "mean dilatation");
+      (parameters.volumetric_formulation ==
+       Parameters::FiniteElement::VolumetricFormulation::mean_dilatation);
     if (with_matrix)
       system_matrix = 0.;
     if (with_damping)
@@ -679,7 +680,7 @@ namespace SoftRobot
 
 
 #define SOFT_ROBOT_INSTANTIATE(dim)                                           \
-  template typename SoftRobotDynamics<dim>::AssemblyResult SoftRobotDynamics< \
+  template AssemblyResult SoftRobotDynamics< \
     dim>::assemble_internal_force(const TrilinosWrappers::MPI::Vector &,      \
                                   const bool,                                 \
                                   TrilinosWrappers::MPI::Vector &,            \

@@ -67,7 +67,8 @@ namespace SoftRobot
         }
     };
 
-    if (parameters.tip_region_type == "boundary")
+    if (parameters.tip_region_type ==
+        Parameters::Output::TipRegionType::boundary)
       {
         FEFaceValues<dim> fe_face_values(*mapping,
                                          *fe,
@@ -231,7 +232,7 @@ namespace SoftRobot
     AssertThrow(trajectory,
                 ExcMessage("Cannot write the trajectory file '" + name + "'."));
     trajectory << "# SoftRobotDynamics<" << dim << "> tip trajectory of "
-               << parameters.tip_region_type << ' ' << parameters.tip_region_id
+               << Parameters::name_of(parameters.tip_region_type) << ' ' << parameters.tip_region_id
                << ", from " << parameters.source_name << "\n"
                << "# units: s, mm, mm/s; energies in kg mm^2/s^2 (= 1e-6 J); "
                   "angular momentum in kg mm^2/s\n"
@@ -360,7 +361,8 @@ namespace SoftRobot
                             *cell_quadrature,
                             update_gradients | update_JxW_values);
     const bool    mean_dilatation =
-      (dim == 3) && (parameters.volumetric_formulation == "mean dilatation");
+      (dim == 3) && (parameters.volumetric_formulation ==
+       Parameters::FiniteElement::VolumetricFormulation::mean_dilatation);
     const FEValuesExtractors::Vector displacements(0);
     std::vector<Tensor<2, dim>>      grad_u(cell_quadrature->size());
     MaterialResponse<dim>            response;

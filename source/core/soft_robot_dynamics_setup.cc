@@ -197,7 +197,8 @@ namespace SoftRobot
     TimerOutput::Scope timer_section(computing_timer, "Make grid");
 
     Triangulation<dim> serial;
-    if (parameters.mesh_source == "generator")
+    if (parameters.mesh_source ==
+        Parameters::Geometry::MeshSource::generator)
       {
         Triangulation<dim> generated;
         try
@@ -238,7 +239,8 @@ namespace SoftRobot
     // Generators number materials in their own ways (colorized boxes by
     // octant); a generated mesh is of material 1 unless the parameter
     // file's function says otherwise.
-    if (parameters.mesh_source == "generator")
+    if (parameters.mesh_source ==
+        Parameters::Geometry::MeshSource::generator)
       for (const auto &cell : serial.active_cell_iterators())
         cell->set_material_id(1);
     if (!parameters.material_id_function.empty())
@@ -278,7 +280,8 @@ namespace SoftRobot
     for (const unsigned int id : parameters.traction_boundary_ids)
       named_boundaries.emplace_back(
         id, "Loads and constraints/Traction boundary ids");
-    if (parameters.tip_region_type == "boundary")
+    if (parameters.tip_region_type ==
+        Parameters::Output::TipRegionType::boundary)
       named_boundaries.emplace_back(parameters.tip_region_id,
                                     "Output/Tip region");
     else
@@ -938,9 +941,9 @@ namespace SoftRobot
          << Utilities::MPI::n_mpi_processes(mpi_communicator) << ",\n"
          << "  \"threads_per_process\": " << MultithreadInfo::n_threads()
          << ",\n"
-         << "  \"linear_solver\": \"" << parameters.LinearSolver::type
+         << "  \"linear_solver\": \"" << Parameters::name_of(parameters.linear_solver)
          << "\",\n"
-         << "  \"tangent_update\": \"" << parameters.tangent_update << "\",\n"
+         << "  \"tangent_update\": \"" << Parameters::name_of(parameters.tangent_update) << "\",\n"
          << "  \"end_time\": " << current.time << ",\n"
          << "  \"steps\": " << step_number << ",\n"
          << "  \"newton_iterations\": " << total_newton_iterations << ",\n"

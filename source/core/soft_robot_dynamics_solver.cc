@@ -59,7 +59,7 @@ namespace SoftRobot
   // + c_v\mathbf C)$ with $c_v = \gamma/(\beta\Delta t)$. The trial's
   // velocity, acceleration and forces are left in `current`.
   template <int dim>
-  typename SoftRobotDynamics<dim>::AssemblyResult
+  AssemblyResult
   SoftRobotDynamics<dim>::evaluate_residual(
     const TrilinosWrappers::MPI::Vector &u_trial,
     const double                         dt,
@@ -71,7 +71,9 @@ namespace SoftRobot
     // Newton's method proper assembles the damping matrix of every iterate
     // (the last one's is the next step's); the modified one assembles it
     // at the end of the step only, so a matrix here is only a new tangent.
-    const bool every_iteration = (parameters.tangent_update != "every step");
+    const bool every_iteration =
+      (parameters.tangent_update !=
+       Parameters::NonlinearSolver::TangentUpdate::every_step);
     AssemblyResult assembly    = assemble_internal_force(u_trial,
                                                       with_matrix,
                                                       current.internal_force,
@@ -162,7 +164,7 @@ namespace SoftRobot
   // history is dropped, as it is whenever the matrix changes. $m$ is the
   // parameter `Acceleration depth`; zero turns it off.
   template <int dim>
-  typename SoftRobotDynamics<dim>::AssemblyResult
+  AssemblyResult
   SoftRobotDynamics<dim>::newton_solve(TrilinosWrappers::MPI::Vector &u,
                                        const ResidualEvaluator       &evaluate,
                                        const double  force_scale,
@@ -178,7 +180,7 @@ namespace SoftRobot
     // the iterates and of their updates since the matrix last changed, the
     // last iterate and update, and the accelerated step.
     const unsigned int depth =
-      modified ? parameters.NonlinearSolver::acceleration_depth : 0;
+      modified ? parameters.acceleration_depth : 0;
     std::deque<TrilinosWrappers::MPI::Vector> iterate_differences,
       update_differences;
     TrilinosWrappers::MPI::Vector last_iterate(residual), last_update(residual),
@@ -220,12 +222,12 @@ namespace SoftRobot
                             " against " + std::to_string(initial_force_scale) +
                             " at its start)");
         reference = std::max(reference, assembly.force_scale);
-        if (norm <= parameters.absolute_tolerance ||
-            norm <= parameters.NonlinearSolver::relative_tolerance * reference)
+        if (norm <= parameters.newton_absolute_tolerance ||
+            norm <= parameters.newton_relative_tolerance * reference)
           break;
         // The modified variant may take twice as many (cheaper) iterations.
         if (iterations == (modified ? 2 : 1) *
-                            parameters.NonlinearSolver::max_iterations)
+                            parameters.newton_max_iterations)
           {
             std::ostringstream message;
             message << "Newton's method did not converge in " << iterations
@@ -373,7 +375,7 @@ namespace SoftRobot
             rebuild_tangent =
               (norm > 0.5 * old_norm) ||
               (iterations_with_tangent >=
-               parameters.NonlinearSolver::max_iterations);
+               parameters.newton_max_iterations);
           }
       }
     last_residual = norm;
@@ -520,7 +522,8 @@ namespace SoftRobot
   {
     ++total_tangent_updates;
     prepared_matrix = &matrix;
-    if (parameters.LinearSolver::type == "Direct")
+    if (parameters.linear_solver ==
+        Parameters::LinearSolver::LinearSolverType::direct)
       {
         // The fill-reducing ordering depends only on the sparsity pattern,
         // which never changes: the symbolic analysis is done once per
@@ -542,7 +545,8 @@ namespace SoftRobot
             direct_problem = std::make_unique<Epetra_LinearProblem>();
             direct_problem->SetOperator(&epetra_matrix);
             const std::string package =
-              "Amesos_" + std::string(parameters.direct_solver == "MUMPS" ?
+              "Amesos_" + std::string(parameters.direct_solver ==
+        Parameters::LinearSolver::DirectSolverType::mumps ?
                                         "Mumps" :
                                         "Klu");
             Amesos factory;
@@ -550,9 +554,9 @@ namespace SoftRobot
               factory.Create(package.c_str(), *direct_problem));
             AssertThrow(direct_factorization != nullptr,
                         ExcMessage("Trilinos has no " + package +
-                                   " solver (Linear solver/Direct solver = " +
-                                   parameters.direct_solver + ")."));
-            if (parameters.direct_solver != "MUMPS")
+                                   " solver (Linear solver/Direct solver)."));
+            if (parameters.direct_solver !=
+        Parameters::LinearSolver::DirectSolverType::mumps)
               {
                 Teuchos::ParameterList amesos_parameters;
                 amesos_parameters.set("Refactorize", true);
@@ -671,7 +675,8 @@ namespace SoftRobot
     unsigned int iterations = 1;
     try
       {
-        if (parameters.LinearSolver::type == "Direct")
+        if (parameters.linear_solver ==
+        Parameters::LinearSolver::LinearSolverType::direct)
           {
             direct_problem->SetLHS(&solution.trilinos_vector());
             direct_problem->SetRHS(const_cast<Epetra_MultiVector *>(
@@ -682,10 +687,11 @@ namespace SoftRobot
           }
         else
           {
-            SolverControl control(parameters.LinearSolver::max_iterations,
-                                  parameters.LinearSolver::relative_tolerance *
+            SolverControl control(parameters.linear_max_iterations,
+                                  parameters.linear_relative_tolerance *
                                     rhs.l2_norm());
-            if (parameters.LinearSolver::type == "CG")
+            if (parameters.linear_solver ==
+                Parameters::LinearSolver::LinearSolverType::cg)
               {
                 SolverCG<TrilinosWrappers::MPI::Vector> solver(control);
                 solver.solve(*prepared_matrix,
@@ -721,8 +727,9 @@ namespace SoftRobot
   std::string
   SoftRobotDynamics<dim>::linear_solver_in_use() const
   {
-    if (parameters.LinearSolver::type != "Direct")
-      return amg_preconditioner ? parameters.LinearSolver::type + " with ML" :
+    if (parameters.linear_solver !=
+        Parameters::LinearSolver::LinearSolverType::direct)
+      return amg_preconditioner ? Parameters::name_of(parameters.linear_solver) + " with ML" :
                                   "";
     if (!direct_factorization)
       return "";
@@ -885,7 +892,8 @@ namespace SoftRobot
     constraints.set_zero(current.u);
     constraints.set_zero(current.v);
 
-    if (parameters.InitialConditions::type == "static equilibrium")
+    if (parameters.initial_state ==
+        Parameters::InitialConditions::InitialState::static_equilibrium)
       solve_static_equilibrium(0.);
 
     assemble_external_force(0., 1., current.external_force);
@@ -920,7 +928,8 @@ namespace SoftRobot
     stepper.predict_displacement(
       previous.u, previous.v, previous.a, dt, current.u);
 
-    const bool modified = (parameters.tangent_update == "every step");
+    const bool modified = (parameters.tangent_update ==
+      Parameters::NonlinearSolver::TangentUpdate::every_step);
     if (modified)
       prepare_step_tangent(dt);
 
@@ -1130,7 +1139,8 @@ namespace SoftRobot
     // assembled residuals only, and the stiffness and damping of the new
     // state are assembled here, once per step (the stiffness is the next
     // step's matrix).
-    if (parameters.tangent_update == "every step")
+    if (parameters.tangent_update ==
+      Parameters::NonlinearSolver::TangentUpdate::every_step)
       {
         assemble_internal_force(current.u, true, current.internal_force);
         system_matrix_is_state_stiffness = true;
@@ -1194,12 +1204,12 @@ namespace SoftRobot
 
 
 #define SOFT_ROBOT_INSTANTIATE(dim)                                           \
-  template typename SoftRobotDynamics<dim>::AssemblyResult SoftRobotDynamics< \
+  template AssemblyResult SoftRobotDynamics< \
     dim>::evaluate_residual(const TrilinosWrappers::MPI::Vector &,            \
                             const double,                                     \
                             const bool,                                       \
                             TrilinosWrappers::MPI::Vector &);                 \
-  template typename SoftRobotDynamics<dim>::AssemblyResult                    \
+  template AssemblyResult                    \
   SoftRobotDynamics<dim>::newton_solve(TrilinosWrappers::MPI::Vector &,       \
                                        const ResidualEvaluator &,             \
                                        const double,                          \
