@@ -27,9 +27,10 @@
 //   in the time domain, and it is unbiased for short records).
 //
 // The analysis is a library of its own, <code>soft_robot_analysis</code>:
-// plain C++17 with FFTW3 for the transform, without deal.II, so that it can
-// be used on motion-capture data without the solver. Its files, one task
-// each, in the order of the analysis:
+// plain C++17 with FFTW3 for the transform and LAPACK for the dense linear
+// algebra, without deal.II, so that it can be used on motion-capture data
+// without the solver. Its files, one task each, in the order of the
+// analysis:
 // - trajectory.h: the record, its CSV reader, skipping an initial interval;
 // - uniform_sampling.h: interpolation of non-uniform records;
 // - directions.h: vertical, horizontal and depth motion;
@@ -38,6 +39,7 @@
 // - truncation_theory.h: what truncation does to those bandwidths;
 // - time_domain.h: turning points and the logarithmic decrement;
 // - modal_fit.h: the least-squares fit of damped modes;
+// - dense_linear_algebra.h: the calls to LAPACK;
 // - signal_analysis.h: all of this for one signal;
 // - this file: all of this for a whole trajectory;
 // - spectral_report.h: the results as CSV and as a summary.

@@ -59,6 +59,16 @@ namespace SoftRobot
       // reported with. Without any $(y,z)$ motion, or for a circular one,
       // the angle is arbitrary ($\operatorname{atan2}(0,0)$ gives
       // $\theta = 0$); the ratio then says so.
+      //
+      // This is the one eigenproblem of the analysis, and unlike the least
+      // squares problems it is not handed to LAPACK: the closed form is
+      // exact up to the rounding of a few operations, needs no iteration,
+      // and fixes the orientation of the direction and the degenerate case
+      // by itself, both of which would have to be added to the eigenvectors
+      // that <code>dsyev</code> returns. Its result would also not be the
+      // same to the last bit, and the depth signal of a nearly planar
+      // motion, a small difference of large products, would show that in
+      // its spectrum.
       struct PrincipalDirection
       {
         double angle;

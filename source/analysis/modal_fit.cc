@@ -7,36 +7,52 @@
 //     \left(a_k\cos\omega_k t + b_k\sin\omega_k t\right),
 //   \qquad 0 \le t < T,
 // @f]
-// where the linear trend absorbs a residual offset and a slow drift of
-// the equilibrium (creep, marker drift), which would otherwise be
-// fitted by the modes. The model is linear in $c_0, c_1, a_k, b_k$ and
-// nonlinear in
-// $\mathbf p = (\sigma_k, \omega_k)_k$. Variable projection (Golub and
-// Pereyra) eliminates the linear coefficients: for given $\mathbf p$ they
-// are the least-squares solution, computed by a Householder QR
-// factorisation of the $N\times(2K+2)$ matrix of basis functions, and
-// the residual $\mathbf r(\mathbf p)$ that remains is minimised over the
-// $2K$ nonlinear parameters by Levenberg--Marquardt,
+// where the linear trend absorbs a residual offset and a slow drift of the
+// equilibrium (creep, marker drift), which would otherwise be fitted by the
+// modes. The model is linear in $c_0, c_1, a_k, b_k$ and nonlinear in
+// $\mathbf p = (\sigma_k, \omega_k)_k$.
+//
+// <i>Variable projection</i> (Golub and Pereyra) eliminates the linear
+// coefficients: for given $\mathbf p$ they are the least-squares solution
+// for the $N\times(2K+2)$ matrix $\Phi(\mathbf p)$ of basis functions,
+// computed by a QR factorisation with column pivoting (LAPACK's
+// <code>dgelsy</code>, see dense_linear_algebra.cc), and the residual
+// $\mathbf r(\mathbf p) = \mathbf u - \Phi\mathbf c$ that remains is
+// minimised over the $2K$ nonlinear parameters.
+//
+// <i>Levenberg--Marquardt</i> minimises $\|\mathbf r(\mathbf p)\|^2$ with
+// the steps
 // @f[
-//   \left(J^TJ + \lambda\,\operatorname{diag}J^TJ\right)\delta\mathbf p
-//   = -J^T\mathbf r,
+//   \delta\mathbf p = \arg\min_{\mathbf d}
+//   \left\| \begin{pmatrix} J \\ \sqrt\lambda\,D \end{pmatrix}\mathbf d
+//     + \begin{pmatrix} \mathbf r \\ \mathbf 0 \end{pmatrix} \right\|^2,
+//   \qquad D^2 = \operatorname{diag}J^TJ,
 // @f]
 // with $J = \partial\mathbf r/\partial\mathbf p$ from central differences.
-// The frequencies start at the spectral peaks and the decay rates at $\pi B$
-// (the Lorentzian value of the bandwidth $B$), at a third and at a tenth of
-// it, because truncation can make $\pi B$ ten times too large; the best of
-// the three minima is kept. A mode is accepted only if its frequency stays
-// within one bandwidth (or one resolution $1/T$, if that is larger) of the
-// peak it started from. As explained in truncation_theory.cc, this is the
-// fit of the truncated Lorentzian to the complex spectrum, and for a record
-// that is a sum of damped modes it recovers $\sigma_k$ and $\omega_k$
-// exactly.
+// The normal equations of this problem are Marquardt's
+// $(J^TJ + \lambda\,\operatorname{diag}J^TJ)\,\delta\mathbf p =
+// -J^T\mathbf r$, but the step is computed from the stacked matrix by a
+// Householder QR factorisation (<code>dgels</code>), which works with the
+// condition number of $J$ instead of its square. This matters when two modes
+// are close and their columns of $J$ nearly parallel.
+//
+// <i>Starting points.</i> The frequencies start at the spectral peaks and
+// the decay rates at $\pi B$ (the Lorentzian value of the bandwidth $B$), at
+// a third and at a tenth of it, because truncation can make $\pi B$ ten
+// times too large; the best of the three minima is kept. A mode is accepted
+// only if its frequency stays within one bandwidth (or one resolution
+// $1/T$, if that is larger) of the peak it started from. As explained in
+// truncation_theory.cc, this is the fit of the truncated Lorentzian to the
+// complex spectrum, and for a record that is a sum of damped modes it
+// recovers $\sigma_k$ and $\omega_k$ exactly.
 
 #include <algorithm>
+#include <analysis/dense_linear_algebra.h>
 #include <analysis/modal_fit.h>
 #include <cmath>
 #include <limits>
 #include <numeric>
+#include <utility>
 
 namespace SoftRobot
 {
@@ -48,116 +64,58 @@ namespace SoftRobot
 
 
 
-      // Least squares for a tall matrix given by its columns; returns the
-      // residual in the original coordinates (needed for the Jacobian) and
-      // the coefficients. Columns that are linearly dependent on earlier
-      // ones to round-off get a zero coefficient.
+      // @sect4{The variable-projection residual}
       //
-      // Householder QR: for column $k$, the reflection
-      // $H = I - 2\mathbf v\mathbf v^T/\mathbf v^T\mathbf v$ with
-      // $\mathbf v = \mathbf a_k - \alpha\mathbf e_k$ (rows $k$ to $N-1$)
-      // and $\alpha = -\operatorname{sign}(a_{kk})\|\mathbf a_k\|$ (the sign
-      // that avoids cancellation) maps the column onto $\alpha\mathbf e_k$;
-      // applied to the later columns and to the right-hand side, the
-      // reflections build $R$ and $Q^T\mathbf b$, and back substitution
-      // solves $R\mathbf c = (Q^T\mathbf b)_{0..p-1}$. This is slower than
-      // the normal equations, but it loses no accuracy to the squared
-      // condition number, which matters when two modes are close.
-      std::vector<double>
-      least_squares_residual(const std::vector<std::vector<double>> &columns,
-                             const std::vector<double>              &rhs,
-                             std::vector<double> &coefficients)
-      {
-        const std::size_t                n = rhs.size(), p = columns.size();
-        std::vector<std::vector<double>> factor      = columns;
-        std::vector<double>              rotated_rhs = rhs;
-        std::vector<double>              diagonal(p, 0.);
-
-        for (std::size_t k = 0; k < p; ++k)
-          {
-            double norm = 0.;
-            for (std::size_t i = k; i < n; ++i)
-              norm += factor[k][i] * factor[k][i];
-            norm = std::sqrt(norm);
-            if (norm == 0.)
-              continue;
-
-            std::vector<double> &v     = factor[k];
-            const double         alpha = (v[k] > 0. ? -norm : norm);
-            v[k] -= alpha;
-            double v_norm_squared = 0.;
-            for (std::size_t i = k; i < n; ++i)
-              v_norm_squared += v[i] * v[i];
-
-            const auto reflect = [&](std::vector<double> &x) {
-              double projection = 0.;
-              for (std::size_t i = k; i < n; ++i)
-                projection += v[i] * x[i];
-              const double scale = 2. * projection / v_norm_squared;
-              for (std::size_t i = k; i < n; ++i)
-                x[i] -= scale * v[i];
-            };
-            for (std::size_t j = k + 1; j < p; ++j)
-              reflect(factor[j]);
-            reflect(rotated_rhs);
-            diagonal[k] = alpha;
-          }
-
-        double largest_diagonal = 0.;
-        for (const double d : diagonal)
-          largest_diagonal = std::max(largest_diagonal, std::abs(d));
-
-        coefficients.assign(p, 0.);
-        for (std::size_t k = p; k-- > 0;)
-          {
-            if (std::abs(diagonal[k]) <= 1e-12 * largest_diagonal)
-              continue;
-            double sum = rotated_rhs[k];
-            for (std::size_t j = k + 1; j < p; ++j)
-              sum -= factor[j][k] * coefficients[j];
-            coefficients[k] = sum / diagonal[k];
-          }
-
-        std::vector<double> residual = rhs;
-        for (std::size_t k = 0; k < p; ++k)
-          for (std::size_t i = 0; i < n; ++i)
-            residual[i] -= coefficients[k] * columns[k][i];
-        return residual;
-      }
-
-
-
-      // The columns of the constant and the linear trend come first.
+      // The columns of the constant and the linear trend come first, then
+      // the cosine and the sine of each mode. The trend is evaluated at the
+      // sample centres, $(i+\tfrac12)/N - \tfrac12$, so that it is
+      // orthogonal to the constant. Columns that are linear combinations of
+      // others to within $10^{-12}$ (two modes that a trial step made
+      // equal, a decay so fast that a column vanishes) do not spoil the
+      // residual, which is what the cost needs; see solve_least_squares().
       constexpr std::size_t first_mode_column = 2;
 
 
 
-      // The variable-projection residual for the nonlinear parameters
-      // $(\sigma_1,\omega_1,\sigma_2,\omega_2,\dots)$.
+      ColumnMajorMatrix
+      modal_basis(const std::size_t          n,
+                  const double               time_step,
+                  const std::vector<double> &parameters)
+      {
+        const std::size_t n_modes = parameters.size() / 2;
+        ColumnMajorMatrix basis(n, first_mode_column + 2 * n_modes, 1.);
+        for (std::size_t i = 0; i < n; ++i)
+          basis(i, 1) = (i + 0.5) / n - 0.5;
+        for (std::size_t k = 0; k < n_modes; ++k)
+          for (std::size_t i = 0; i < n; ++i)
+            {
+              const double time     = i * time_step;
+              const double envelope = std::exp(-parameters[2 * k] * time);
+              basis(i, first_mode_column + 2 * k) =
+                envelope * std::cos(parameters[2 * k + 1] * time);
+              basis(i, first_mode_column + 2 * k + 1) =
+                envelope * std::sin(parameters[2 * k + 1] * time);
+            }
+        return basis;
+      }
+
+
+
+      // The residual $\mathbf r(\mathbf p)$ for the nonlinear parameters
+      // $(\sigma_1,\omega_1,\sigma_2,\omega_2,\dots)$; the linear
+      // coefficients are returned in <code>coefficients</code>.
       std::vector<double>
       modal_residual(const std::vector<double> &signal,
                      const double               time_step,
                      const std::vector<double> &parameters,
                      std::vector<double>       &coefficients)
       {
-        const std::size_t                n       = signal.size();
-        const std::size_t                n_modes = parameters.size() / 2;
-        std::vector<std::vector<double>> columns(first_mode_column +
-                                                   2 * n_modes,
-                                                 std::vector<double>(n, 1.));
-        for (std::size_t i = 0; i < n; ++i)
-          columns[1][i] = (i + 0.5) / n - 0.5;
-        for (std::size_t k = 0; k < n_modes; ++k)
-          for (std::size_t i = 0; i < n; ++i)
-            {
-              const double time     = i * time_step;
-              const double envelope = std::exp(-parameters[2 * k] * time);
-              columns[first_mode_column + 2 * k][i] =
-                envelope * std::cos(parameters[2 * k + 1] * time);
-              columns[first_mode_column + 2 * k + 1][i] =
-                envelope * std::sin(parameters[2 * k + 1] * time);
-            }
-        return least_squares_residual(columns, signal, coefficients);
+        LeastSquaresSolution solution =
+          solve_least_squares(modal_basis(signal.size(), time_step, parameters),
+                              signal,
+                              1e-12);
+        coefficients = std::move(solution.coefficients);
+        return std::move(solution.residual);
       }
 
 
@@ -173,57 +131,91 @@ namespace SoftRobot
 
 
 
-      // Solve the small dense system $A x = b$ by Gaussian elimination with
-      // partial pivoting; returns false if $A$ is singular.
-      bool
-      solve_dense_system(std::vector<std::vector<double>> matrix,
-                         std::vector<double>             &rhs)
+      // @sect4{The Jacobian}
+      //
+      // Central differences with a step of $10^{-5}$ of the natural unit of
+      // each parameter (<code>scale</code>), a balance between the
+      // truncation error $O(h^2)$ and the cancellation error
+      // $O(\epsilon/h)$. Column $i$ holds $\partial\mathbf r/\partial p_i$;
+      // each column costs two residuals, i.e. two least-squares solves.
+      ColumnMajorMatrix
+      residual_jacobian(const std::vector<double> &signal,
+                        const double               time_step,
+                        const std::vector<double> &parameters,
+                        const std::vector<double> &scale)
       {
-        const std::size_t m = rhs.size();
-        for (std::size_t k = 0; k < m; ++k)
+        const std::size_t   m = parameters.size();
+        ColumnMajorMatrix   jacobian(signal.size(), m);
+        std::vector<double> coefficients;
+        for (std::size_t i = 0; i < m; ++i)
           {
-            std::size_t pivot = k;
-            for (std::size_t i = k + 1; i < m; ++i)
-              if (std::abs(matrix[i][k]) > std::abs(matrix[pivot][k]))
-                pivot = i;
-            if (matrix[pivot][k] == 0.)
-              return false;
-            std::swap(matrix[k], matrix[pivot]);
-            std::swap(rhs[k], rhs[pivot]);
-            for (std::size_t i = k + 1; i < m; ++i)
-              {
-                const double factor = matrix[i][k] / matrix[k][k];
-                for (std::size_t j = k; j < m; ++j)
-                  matrix[i][j] -= factor * matrix[k][j];
-                rhs[i] -= factor * rhs[k];
-              }
+            const double        h     = 1e-5 * scale[i];
+            std::vector<double> plus  = parameters;
+            std::vector<double> minus = parameters;
+            plus[i] += h;
+            minus[i] -= h;
+            const std::vector<double> r_plus =
+              modal_residual(signal, time_step, plus, coefficients);
+            const std::vector<double> r_minus =
+              modal_residual(signal, time_step, minus, coefficients);
+            for (std::size_t n = 0; n < signal.size(); ++n)
+              jacobian(n, i) = (r_plus[n] - r_minus[n]) / (2. * h);
           }
-        for (std::size_t k = m; k-- > 0;)
-          {
-            for (std::size_t j = k + 1; j < m; ++j)
-              rhs[k] -= matrix[k][j] * rhs[j];
-            rhs[k] /= matrix[k][k];
-          }
-        return true;
+        return jacobian;
       }
 
 
 
-      // Levenberg--Marquardt from one starting point. The parameters are
-      // measured in the natural units of the record, $1/T$ for decay rates
-      // and $2\pi/T$ for angular frequencies, both for the finite-difference
-      // steps and for the convergence test.
+      // @sect4{The damped step}
       //
-      // Each iteration computes the Jacobian by central differences with a
-      // step of $10^{-5}$ of those units (a balance between the truncation
-      // error $O(h^2)$ and the cancellation error $O(\epsilon/h)$), and then
-      // tries steps with increasing damping $\lambda$ until one lowers the
-      // cost. An accepted step divides $\lambda$ by 3, a rejected one
-      // multiplies it by 4; steps that would make a frequency non-positive
-      // or a parameter non-finite are rejected. The iteration ends when no
-      // step lowers the cost any more (the minimum has been reached to
-      // round-off), when a step changes no parameter by more than
-      // $10^{-10}$ of its unit, or after 200 iterations.
+      // The stacked least-squares problem of the introduction for one
+      // value of $\lambda$: $J$ on top of the diagonal
+      // $\sqrt{\lambda\max(d_i, 10^{-300})}$, where $d_i = \|J_{:,i}\|^2$ is
+      // the diagonal of $J^TJ$ (the lower bound keeps a parameter that the
+      // residual does not depend on from making the matrix singular), and
+      // the right-hand side $(-\mathbf r, \mathbf 0)$. Returns false if the
+      // stacked matrix is singular nonetheless.
+      bool
+      damped_step(const ColumnMajorMatrix   &jacobian,
+                  const std::vector<double> &residual,
+                  const std::vector<double> &jacobian_column_norms_squared,
+                  const double               lambda,
+                  std::vector<double>       &step)
+      {
+        const std::size_t n = jacobian.n_rows(), m = jacobian.n_columns();
+        ColumnMajorMatrix stacked(n + m, m, 0.);
+        for (std::size_t i = 0; i < m; ++i)
+          {
+            std::copy(jacobian.column(i),
+                      jacobian.column(i) + n,
+                      stacked.column(i));
+            stacked(n + i, i) = std::sqrt(
+              lambda * std::max(jacobian_column_norms_squared[i], 1e-300));
+          }
+
+        std::vector<double> rhs(n + m, 0.);
+        for (std::size_t k = 0; k < n; ++k)
+          rhs[k] = -residual[k];
+        return solve_full_rank_least_squares(stacked, rhs, step);
+      }
+
+
+
+      // @sect4{Levenberg--Marquardt from one starting point}
+      //
+      // The parameters are measured in the natural units of the record,
+      // $1/T$ for decay rates and $2\pi/T$ for angular frequencies, both for
+      // the finite-difference steps and for the convergence test.
+      //
+      // Each iteration computes the Jacobian and then tries steps with
+      // increasing damping $\lambda$ until one lowers the cost. An accepted
+      // step divides $\lambda$ by 3, a rejected one multiplies it by 4;
+      // steps that would make a frequency non-positive or a parameter
+      // non-finite are rejected. The iteration ends when no step lowers the
+      // cost any more (the minimum has been reached to round-off), when a
+      // step changes no parameter by more than $10^{-10}$ of its unit or
+      // lowers the cost by no more than $10^{-15}$ of itself, or after 200
+      // iterations.
       std::vector<double>
       levenberg_marquardt(const std::vector<double> &signal,
                           const double               time_step,
@@ -244,51 +236,23 @@ namespace SoftRobot
         double lambda = 1e-3;
         for (unsigned int iteration = 0; iteration < 200; ++iteration)
           {
-            std::vector<std::vector<double>> jacobian(m);
+            const ColumnMajorMatrix jacobian =
+              residual_jacobian(signal, time_step, parameters, scale);
+            std::vector<double> column_norms_squared(m);
             for (std::size_t i = 0; i < m; ++i)
-              {
-                const double        h     = 1e-5 * scale[i];
-                std::vector<double> plus  = parameters;
-                std::vector<double> minus = parameters;
-                plus[i] += h;
-                minus[i] -= h;
-                const std::vector<double> r_plus =
-                  modal_residual(signal, time_step, plus, coefficients);
-                const std::vector<double> r_minus =
-                  modal_residual(signal, time_step, minus, coefficients);
-                jacobian[i].resize(signal.size());
-                for (std::size_t n = 0; n < signal.size(); ++n)
-                  jacobian[i][n] = (r_plus[n] - r_minus[n]) / (2. * h);
-              }
-
-            std::vector<std::vector<double>> normal_matrix(
-              m, std::vector<double>(m));
-            std::vector<double> gradient(m);
-            for (std::size_t i = 0; i < m; ++i)
-              {
-                gradient[i] = std::inner_product(jacobian[i].begin(),
-                                                 jacobian[i].end(),
-                                                 residual.begin(),
-                                                 0.);
-                for (std::size_t j = 0; j < m; ++j)
-                  normal_matrix[i][j] = std::inner_product(jacobian[i].begin(),
-                                                           jacobian[i].end(),
-                                                           jacobian[j].begin(),
-                                                           0.);
-              }
+              column_norms_squared[i] =
+                std::inner_product(jacobian.column(i),
+                                   jacobian.column(i) + signal.size(),
+                                   jacobian.column(i),
+                                   0.);
 
             bool   improved  = false;
             double step_size = 0.;
             while (lambda < 1e12)
               {
-                std::vector<std::vector<double>> damped = normal_matrix;
-                for (std::size_t i = 0; i < m; ++i)
-                  damped[i][i] +=
-                    lambda * std::max(normal_matrix[i][i], 1e-300);
-                std::vector<double> step(m);
-                for (std::size_t i = 0; i < m; ++i)
-                  step[i] = -gradient[i];
-                if (!solve_dense_system(damped, step))
+                std::vector<double> step;
+                if (!damped_step(
+                      jacobian, residual, column_norms_squared, lambda, step))
                   {
                     lambda *= 4.;
                     continue;

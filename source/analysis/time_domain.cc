@@ -37,6 +37,7 @@
 // cent.
 
 #include <algorithm>
+#include <analysis/dense_linear_algebra.h>
 #include <analysis/time_domain.h>
 #include <analysis/utilities.h>
 #include <cmath>
@@ -151,10 +152,12 @@ namespace SoftRobot
     // @sect4{The logarithmic decrement}
     //
     // The half-cycle amplitudes $h_j$, the run of qualifying ones that
-    // starts at the largest, and the least-squares line
-    // $\ln h_j \approx c_0 - \delta\,\tfrac j2$ through them, whose slope
-    // is the covariance of $(j/2, \ln h_j)$ over the variance of $j/2$. At
-    // least three half cycles are required, one more than a line needs.
+    // starts at the largest, and the line
+    // $\ln h_j \approx c_0 + c_1\,\tfrac j2$ through them. The line is the
+    // least-squares solution of the $m\times2$ system with the columns
+    // $(1)$ and $(j/2)$, computed by LAPACK (dense_linear_algebra.cc); the
+    // decrement is $\delta = -c_1$. At least three half cycles are
+    // required, one more than a line needs.
     LogarithmicDecrement
     logarithmic_decrement_of(const std::vector<TurningPoint> &turning_points,
                              const double half_period_in_samples,
@@ -203,19 +206,18 @@ namespace SoftRobot
           return decrement;
         }
 
-      // Least-squares line through $(j/2, \ln h_j)$.
-      const std::size_t m          = log_amplitudes.size();
-      const double      mean_index = 0.25 * (m - 1.);
-      const double      mean_log   = internal::mean_of(log_amplitudes);
-      double            covariance = 0., variance = 0.;
+      const std::size_t m = log_amplitudes.size();
+      ColumnMajorMatrix line(m, 2);
       for (std::size_t j = 0; j < m; ++j)
         {
-          covariance += (0.5 * j - mean_index) * (log_amplitudes[j] - mean_log);
-          variance += (0.5 * j - mean_index) * (0.5 * j - mean_index);
+          line(j, 0) = 1.;
+          line(j, 1) = 0.5 * j;
         }
+      const LeastSquaresSolution fit =
+        solve_least_squares(line, log_amplitudes);
 
       decrement.valid     = true;
-      decrement.decrement = -covariance / variance;
+      decrement.decrement = -fit.coefficients[1];
       decrement.damping_ratio =
         decrement.decrement /
         std::sqrt(4. * internal::pi * internal::pi +
