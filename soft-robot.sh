@@ -30,7 +30,7 @@
 set -euo pipefail
 cd "$(dirname "$0")"
 
-packages=(cmake make g++ libdeal.ii-dev libfftw3-dev libgtest-dev)
+packages=(cmake make g++ libdeal.ii-dev libfftw3-dev liblapack-dev libgtest-dev)
 
 install_missing_packages() {
   local missing=()

@@ -6,7 +6,7 @@
 // the quality factor and three damping ratios: the half-power value
 // $\xi = 1/(2Q)$ the reference study used, the logarithmic decrement, and
 // the modal fit, which is the recommended one for short records (see
-// spectral_analysis.cc for why). With <code>--csv</code> it writes the same
+// truncation_theory.cc for why). With <code>--csv</code> it writes the same
 // table as CSV, with <code>--spectrum</code> the magnitude spectra for
 // plotting.
 //

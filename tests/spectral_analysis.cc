@@ -23,7 +23,10 @@
 //   truncated_decay_half_power_width(), up to the same leakage.
 
 #include <algorithm>
+#include <analysis/directions.h>
 #include <analysis/spectral_analysis.h>
+#include <analysis/truncation_theory.h>
+#include <analysis/uniform_sampling.h>
 #include <cmath>
 #include <complex>
 #include <cstdio>

@@ -1,5 +1,7 @@
 // @sect3{Reports of the spectral analysis as CSV}
 //
+// Implemented in source/analysis/spectral_report.cc.
+//
 // The results of analyse_trajectory() as the two CSV files that both the
 // program `tip-spectrum` and the simulator (at the end of a scene whose
 // parameter file asks for it) write: one row per spectral peak and

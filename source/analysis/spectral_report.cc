@@ -1,3 +1,10 @@
+// @sect3{Reports of the spectral analysis as CSV}
+//
+// The results of analyse_trajectory() as text: the table of peaks and the
+// magnitude spectra as CSV files, and one line per direction for a log.
+// Only formatting happens here; every number comes from the analysis as it
+// is.
+
 #include <analysis/spectral_report.h>
 #include <cmath>
 #include <iomanip>
