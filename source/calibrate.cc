@@ -26,6 +26,7 @@
 
 #include <analysis/spectral_analysis.h>
 #include <core/parameters.h>
+#include <core/simulator_access.h>
 #include <core/soft_robot_dynamics.h>
 #include <deal.II/base/mpi.h>
 #include <algorithm>
@@ -138,10 +139,11 @@ namespace
   tip_displacement(const Parameters::AllParameters &parameters)
   {
     SoftRobotDynamics<dim> model(parameters, MPI_COMM_WORLD);
-    model.make_grid();
-    model.setup_system();
-    model.initialize_state();
-    return model.tip_motion().first;
+    SimulatorAccess<dim>   access(model);
+    access.make_grid();
+    access.setup_system();
+    access.initialize_state();
+    return access.tip_motion().first;
   }
 
   // The stiffness of the tip in direction `component`: force over

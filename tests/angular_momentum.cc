@@ -60,7 +60,7 @@ TYPED_TEST(AngularMomentumTest, RigidRotationOfABox)
           << "subsection Linear solver\n  set Solver = Direct\nend\n";
         Parameters::AllParameters parameters;
         parameters.read_string(parameter_text(dim, sections.str()));
-        SoftRobotDynamics<dim> body(parameters, MPI_COMM_WORLD);
+        Simulation<dim> body(parameters, MPI_COMM_WORLD);
         body.make_grid();
         body.setup_system();
         body.initialize_state();

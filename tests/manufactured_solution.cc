@@ -161,7 +161,7 @@ namespace
   // The box of n cells per direction, clamped on all faces, degree p,
   // HHT-alpha with the given number of steps to the end time.
   template <int dim>
-  std::unique_ptr<SoftRobotDynamics<dim>>
+  std::unique_ptr<Simulation<dim>>
   run(const unsigned int degree,
       const unsigned int n_cells,
       const unsigned int n_steps,
@@ -205,7 +205,7 @@ namespace
     Parameters::AllParameters parameters;
     parameters.read_string(parameter_text(dim, sections.str()));
     auto body =
-      std::make_unique<SoftRobotDynamics<dim>>(parameters, MPI_COMM_WORLD);
+      std::make_unique<Simulation<dim>>(parameters, MPI_COMM_WORLD);
     body->make_grid();
     body->setup_system();
     body->set_body_force(std::make_shared<ManufacturedBodyForce<dim>>());
@@ -220,7 +220,7 @@ namespace
   // The L2 and H1-seminorm errors of the final displacement.
   template <int dim>
   std::pair<double, double>
-  errors_against_exact(const SoftRobotDynamics<dim> &body,
+  errors_against_exact(const Simulation<dim> &body,
                        const unsigned int            degree)
   {
     ExactDisplacement<dim> exact;

@@ -9,6 +9,8 @@
 // 1e-12 leave differences far below the 1e-7 relative allowed here. Run on
 // one process, the test compares a run with itself.
 
+#include "solver_test_tools.h"
+
 #include <core/soft_robot_dynamics.h>
 #include <cstdlib>
 #include <deal.II/base/mpi.h>
@@ -21,6 +23,7 @@
 
 using namespace dealii;
 using namespace SoftRobot;
+using namespace SoftRobot::Testing;
 
 TEST(MPI, PartitionedRunMatchesSerialRun)
 {
@@ -29,9 +32,9 @@ TEST(MPI, PartitionedRunMatchesSerialRun)
   Parameters::AllParameters parameters;
   parameters.read_file(std::string(root) + "/tests/cli/two_processes.prm");
 
-  SoftRobotDynamics<2> parallel(parameters, MPI_COMM_WORLD);
-  SoftRobotDynamics<2> serial(parameters, MPI_COMM_SELF);
-  for (SoftRobotDynamics<2> *run : {&parallel, &serial})
+  Simulation<2> parallel(parameters, MPI_COMM_WORLD);
+  Simulation<2> serial(parameters, MPI_COMM_SELF);
+  for (Simulation<2> *run : {&parallel, &serial})
     {
       run->make_grid();
       run->setup_system();
@@ -118,7 +121,7 @@ TEST(MPI, OutputHasOnePiecePerProcess)
     Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD);
   MPI_Barrier(MPI_COMM_WORLD);
   {
-    SoftRobotDynamics<2> run(parameters, MPI_COMM_WORLD);
+    Simulation<2> run(parameters, MPI_COMM_WORLD);
     run.run();
   }
   MPI_Barrier(MPI_COMM_WORLD);
@@ -176,7 +179,7 @@ TEST(MPI, OutputFailureStopsEveryProcess)
   std::string message;
   try
     {
-      SoftRobotDynamics<2> run(parameters, MPI_COMM_WORLD);
+      Simulation<2> run(parameters, MPI_COMM_WORLD);
       run.run();
     }
   catch (const std::exception &error)

@@ -98,7 +98,7 @@ TEST(StaticSag, HangingColumnMatchesClosedForm)
       "subsection Nonlinear solver\n  set Absolute tolerance = 1e-10\n"
       "  set Relative tolerance = 1e-13\nend\n"
       "subsection Linear solver\n  set Solver = Direct\nend\n");
-  SoftRobotDynamics<1> column(read(text), MPI_COMM_WORLD);
+  Simulation<1> column(read(text), MPI_COMM_WORLD);
   column.make_grid();
   column.setup_system();
   column.solve_static_equilibrium(0.);
@@ -222,7 +222,7 @@ namespace
       geometry.str() + material(1, mu, 100., rho, 100.) +
         material(2, mu_block, 100., rho_block, 100.) +
         "subsection Loads and constraints\n  set Fixed components = 0: x\nend\n");
-    SoftRobotDynamics<1> rod(read(text), MPI_COMM_WORLD);
+    Simulation<1> rod(read(text), MPI_COMM_WORLD);
     rod.make_grid();
     rod.setup_system();
     return linearised_frequencies(rod)[0];
@@ -302,7 +302,7 @@ TEST(SlenderColumn3D, AxialFrequencyMatchesRodTheory)
         << material(2, mu, kappa, rho_block, 1.)
         << "subsection Loads and constraints\n  set Fixed components = 0: x, 2: y, "
            "4: z\nend\n";
-      SoftRobotDynamics<3> column(read(parameter_text(3, sections.str())),
+      Simulation<3> column(read(parameter_text(3, sections.str())),
                                   MPI_COMM_WORLD);
       column.make_grid();
       column.setup_system();
@@ -353,7 +353,7 @@ energy_history(const double alpha)
     << "subsection Nonlinear solver\n  set Absolute tolerance = 0\n"
        "  set Relative tolerance = 1e-11\nend\n"
     << "subsection Linear solver\n  set Solver = Direct\nend\n";
-  SoftRobotDynamics<dim> body(read(parameter_text(dim, sections.str())),
+  Simulation<dim> body(read(parameter_text(dim, sections.str())),
                               MPI_COMM_WORLD);
   body.make_grid();
   body.setup_system();
@@ -448,7 +448,7 @@ check_patch_test(const bool         simplices,
     << "subsection Nonlinear solver\n  set Absolute tolerance = 1e-11\n"
        "  set Relative tolerance = 0\nend\n"
     << "subsection Linear solver\n  set Solver = Direct\nend\n";
-  SoftRobotDynamics<dim> body(read(parameter_text(dim, sections.str())),
+  Simulation<dim> body(read(parameter_text(dim, sections.str())),
                               MPI_COMM_WORLD);
   body.make_grid();
   body.setup_system();

@@ -4,6 +4,7 @@
 #ifndef soft_robot_tests_solver_test_tools_h
 #define soft_robot_tests_solver_test_tools_h
 
+#include <core/simulator_access.h>
 #include <core/soft_robot_dynamics.h>
 #include <deal.II/lac/lapack_full_matrix.h>
 #include <gtest/gtest.h>
@@ -12,6 +13,36 @@
 
 namespace SoftRobot::Testing
 {
+  // A simulator together with its accessor: what the tests construct where
+  // a user would construct SoftRobotDynamics<dim>. The simulator is a base
+  // class so that it exists before the accessor that refers to it.
+  template <int dim>
+  struct SimulatorHolder
+  {
+    SimulatorHolder(const Parameters::AllParameters &parameters,
+                    const MPI_Comm                   mpi_communicator)
+      : owned_simulator(parameters, mpi_communicator)
+    {}
+    SoftRobotDynamics<dim> owned_simulator;
+  };
+
+  template <int dim>
+  class Simulation : private SimulatorHolder<dim>, public SimulatorAccess<dim>
+  {
+  public:
+    Simulation(const Parameters::AllParameters &parameters,
+               const MPI_Comm                   mpi_communicator)
+      : SimulatorHolder<dim>(parameters, mpi_communicator)
+      , SimulatorAccess<dim>(this->owned_simulator)
+    {}
+
+    void
+    run()
+    {
+      this->owned_simulator.run();
+    }
+  };
+
   // The dimensions the typed tests run in.
   using Dimensions = ::testing::Types<std::integral_constant<int, 1>,
                                       std::integral_constant<int, 2>,
@@ -60,7 +91,7 @@ namespace SoftRobot::Testing
   // with the constrained degrees of freedom removed; ascending.
   template <int dim>
   std::vector<double>
-  linearised_frequencies(SoftRobotDynamics<dim> &model)
+  linearised_frequencies(SimulatorAccess<dim> &model)
   {
     const auto &stiffness   = model.tangent_stiffness_matrix();
     const auto &mass        = model.mass_matrix();

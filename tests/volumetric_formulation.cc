@@ -71,7 +71,7 @@ namespace
   // seed), zero at the constrained dofs.
   template <int dim>
   TrilinosWrappers::MPI::Vector
-  random_displacement(const SoftRobotDynamics<dim> &body,
+  random_displacement(const Simulation<dim> &body,
                       const double                  amplitude,
                       const unsigned int            seed)
   {
@@ -88,7 +88,7 @@ namespace
   // force along w against K w: the relative errors.
   template <int dim>
   std::pair<double, double>
-  linearisation_errors(SoftRobotDynamics<dim>              &body,
+  linearisation_errors(Simulation<dim>              &body,
                        const TrilinosWrappers::MPI::Vector &u,
                        const TrilinosWrappers::MPI::Vector &w)
   {
@@ -120,7 +120,7 @@ namespace
                       const unsigned int degree,
                       const std::string &formulation)
   {
-    SoftRobotDynamics<dim> body(
+    Simulation<dim> body(
       read(clamped_box(dim, simplices, degree, formulation, 10., 1000.)),
       MPI_COMM_WORLD);
     body.make_grid();
@@ -206,7 +206,7 @@ TEST(MeanDilatation, EqualsDisplacementFormulationOnLinearTetrahedra)
   std::vector<TrilinosWrappers::MPI::Vector> forces;
   for (const std::string formulation : {"displacement", "mean dilatation"})
     {
-      SoftRobotDynamics<3> body(
+      Simulation<3> body(
         read(clamped_box(3, true, 1, formulation, 10., 1000.)), MPI_COMM_WORLD);
       body.make_grid();
       body.setup_system();
@@ -251,7 +251,7 @@ TEST(MeanDilatation, CuresLockingInBending)
       std::vector<double> omega;
       for (const double ratio : {1e2, 1e4})
         {
-          SoftRobotDynamics<3> body(read(clamped_box(
+          Simulation<3> body(read(clamped_box(
                                       3, true, 2, formulation, mu, ratio * mu, 4, 4., 1)),
                                     MPI_COMM_WORLD);
           body.make_grid();

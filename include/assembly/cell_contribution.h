@@ -1,0 +1,113 @@
+// @sect3{What one cell contributes}
+//
+// The assembly is split into two parts that know nothing of each other:
+// the physics, which integrates over one cell (see HyperelasticSolid), and
+// the global addition, which gathers the cell's values from the global
+// vectors, runs the physics on all cells (in parallel threads) and adds the
+// results into the global matrices and vectors (see SystemAssembler). This
+// header is the interface between the two: CellContribution carries the
+// cell's input values to the physics and its matrices and vectors back.
+//
+// Every assembly produces one force vector and, on request, one matrix (the
+// tangent) and a second matrix of the same sparsity pattern (the damping
+// matrix of the state). A second force vector (for example the damping
+// force alone, for the energy account) can be asked for too.
+//
+// Declared here, used by source/assembly/ and source/physics/.
+
+#ifndef soft_robot_assembly_cell_contribution_h
+#define soft_robot_assembly_cell_contribution_h
+
+#include <deal.II/base/symmetric_tensor.h>
+#include <deal.II/base/tensor.h>
+#include <deal.II/base/types.h>
+#include <deal.II/lac/full_matrix.h>
+#include <deal.II/lac/vector.h>
+#include <limits>
+#include <vector>
+
+namespace SoftRobot
+{
+  using namespace dealii;
+
+  // @sect4{The request}
+  //
+  // Which of the outputs an assembly computes.
+  struct AssemblyRequest
+  {
+    bool matrix        = false; // the tangent matrix
+    bool second_matrix = false; // the damping matrix of the state
+    bool second_force  = false; // a second force vector
+  };
+
+
+
+  // @sect4{The work space of one thread}
+  //
+  // Arrays that the integral over a cell needs per shape function or per
+  // quadrature point. They live as long as the thread's CellContribution
+  // object, so that no cell allocates memory.
+  template <int dim>
+  struct CellWorkspace
+  {
+    std::vector<SymmetricTensor<2, dim>> delta_E;
+    std::vector<Tensor<2, dim>>          displacement_gradients;
+    std::vector<Tensor<2, dim>>          velocity_gradients;
+    Vector<double>                       volume_gradient;
+  };
+
+
+
+  // @sect4{The contribution of one cell}
+  template <int dim>
+  struct CellContribution
+  {
+    // Set by the global addition before the cell's integral: the cell (its
+    // number in the order of CellGeometry), the request, and per input
+    // vector a pointer to the cell's dofs' values (in the order of the
+    // cell's dofs; a constrained dof has the value zero).
+    unsigned int                 cell = 0;
+    AssemblyRequest              request;
+    std::vector<const double *> input_values;
+
+    // Computed by the integral over the cell.
+    FullMatrix<double> matrix;
+    FullMatrix<double> second_matrix;
+    Vector<double>     force;
+    Vector<double>     second_force;
+    double             strain_energy = 0.;
+    double             min_jacobian  = std::numeric_limits<double>::max();
+    bool               inverted      = false;
+
+    // The cell's global dof indices, for the global addition.
+    std::vector<types::global_dof_index> dof_indices;
+
+    CellWorkspace<dim> workspace;
+
+    // Sizes the arrays for cells with n dofs and sets the outputs to zero.
+    void
+    reset(const unsigned int n)
+    {
+      if (force.size() != n)
+        {
+          matrix.reinit(n, n);
+          second_matrix.reinit(n, n);
+          force.reinit(n);
+          second_force.reinit(n);
+          dof_indices.resize(n);
+        }
+      if (request.matrix)
+        matrix = 0.;
+      if (request.second_matrix)
+        second_matrix = 0.;
+      force = 0.;
+      if (request.second_force)
+        second_force = 0.;
+      strain_energy = 0.;
+      min_jacobian  = std::numeric_limits<double>::max();
+      inverted      = false;
+    }
+  };
+} // namespace SoftRobot
+
+#endif

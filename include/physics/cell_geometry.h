@@ -1,0 +1,76 @@
+// @sect3{The reference geometry of the cells}
+//
+// In the total Lagrangian formulation the shape-function gradients and the
+// quadrature weights refer to the undeformed mesh and never change.
+// CellGeometry computes them once for the locally owned cells, so that the
+// integrals over the cells, which run in every Newton iteration, do no
+// FEValues::reinit() (for linear tetrahedra that was a third of their
+// time). A vector-valued shape function $\mathbf N_i = \varphi_i\mathbf
+// e_{c_i}$ of the FESystem has one nonzero component $c_i$; only the
+// gradient of $\varphi_i$ is stored.
+//
+// The cells are numbered in the order in which a loop over the locally
+// owned cells of the DoFHandler visits them; every per-cell array of the
+// program (here, in HyperelasticSolid, in the global addition) uses that
+// numbering.
+//
+// Implemented in source/physics/cell_geometry.cc.
+
+#ifndef soft_robot_physics_cell_geometry_h
+#define soft_robot_physics_cell_geometry_h
+
+#include <deal.II/base/quadrature.h>
+#include <deal.II/base/tensor.h>
+#include <deal.II/dofs/dof_handler.h>
+#include <deal.II/fe/mapping.h>
+#include <functional>
+#include <vector>
+
+namespace SoftRobot
+{
+  using namespace dealii;
+
+  template <int dim>
+  struct CellGeometry
+  {
+    // Computes the data below for the locally owned cells. `section` gives
+    // the factor that turns an integral over the model into one over the
+    // body it stands for (the cross-section area of the 1D column, the
+    // thickness of the 2D strip, one in 3D), per material id.
+    void
+    reinit(const Mapping<dim>                                  &mapping,
+           const DoFHandler<dim>                               &dof_handler,
+           const Quadrature<dim>                               &quadrature,
+           const std::function<double(const types::material_id)> &section);
+
+    unsigned int n_cells       = 0;
+    unsigned int dofs_per_cell = 0;
+    unsigned int n_q_points    = 0;
+    // The component $c_i$ of each shape function of a cell.
+    std::vector<unsigned int> components;
+    // Per cell: the global dof indices, [cell][i].
+    std::vector<types::global_dof_index> dof_indices;
+    // Per cell and point: the gradients of the scalar shape functions,
+    // [cell][q][i], and the weight times the section factor, [cell][q].
+    std::vector<Tensor<1, dim>> shape_gradients;
+    std::vector<double>         JxW;
+    // Per cell: its material id.
+    std::vector<types::material_id> material_ids;
+
+    // The gradients of the shape functions at point q of a cell.
+    const Tensor<1, dim> *
+    gradients(const unsigned int cell, const unsigned int q) const
+    {
+      return &shape_gradients[(cell * n_q_points + q) * dofs_per_cell];
+    }
+
+    // The weight of point q of a cell (times the section factor).
+    double
+    weight(const unsigned int cell, const unsigned int q) const
+    {
+      return JxW[cell * n_q_points + q];
+    }
+  };
+} // namespace SoftRobot
+
+#endif

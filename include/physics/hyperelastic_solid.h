@@ -1,0 +1,156 @@
+// @sect3{The hyperelastic solid: what one cell contributes}
+//
+// This class is the physics of the body's interior: for the displacement of
+// one cell it computes the cell's elastic internal force, its tangent
+// stiffness and the damping matrix of the state. It knows the materials and
+// the volumetric formulation, and nothing of the global matrices and
+// vectors: the global addition (SystemAssembler) hands it the cell's values
+// and takes its results.
+//
+// At each quadrature point the deformation gradient $\mathbf F = \mathbf I
+// + \nabla_0\mathbf u$ gives, through the material's automatic derivatives,
+// the stress $\mathbf S$ and the tangent $\mathcal C$. For a test function
+// $\mathbf N_i = \varphi_i\mathbf e_{c_i}$ the variation of the strain is
+// @f[
+//   \delta\mathbf E_i = \mathrm{sym}(\mathbf F^T\nabla_0\mathbf N_i)
+//   = \mathrm{sym}(\mathbf f_{c_i}\otimes\nabla_0\varphi_i),
+// @f]
+// with $\mathbf f_c$ the row $c$ of $\mathbf F$, and the internal force and
+// the tangent stiffness are
+// @f[
+//   f_i = \int \delta\mathbf E_i : \mathbf S\;dV
+//       = \int \mathbf f_{c_i}\cdot\mathbf S\,\nabla_0\varphi_i\;dV,\qquad
+//   K_{ij} = \int \delta\mathbf E_i : \mathcal C : \delta\mathbf E_j
+//          + \delta_{c_ic_j}\,\nabla_0\varphi_i\cdot\mathbf S\,
+//            \nabla_0\varphi_j \; dV,
+// @f]
+// the first term of $K_{ij}$ being the material part. The damping matrix of
+// the stiffness-proportional damping,
+// @f[
+//   C_{ij} = \int_{\Omega_0} \zeta\;\delta\mathbf E_i : \mathcal
+//   C^+ : \delta\mathbf E_j\,dV,
+// @f]
+// is the material part with each material's own $\zeta$ and the positive
+// semi-definite part $\mathcal C^+$ of the material tangent (which at large
+// strains can have negative eigenvalues; with them, the Ecoflex actuator's
+// damping fed energy into mesh-scale motions until elements inverted). It
+// is symmetric and positive semi-definite, so the damping only dissipates,
+// and it leaves the rigid-body modes of the state it is built at undamped,
+// also the rotations of a prestressed body (which the geometric part of
+// $\mathbf K$ would damp).
+//
+// For the reduced models every integral carries the material's `Section`
+// factor (cross-section area in 1D, thickness in 2D), which CellGeometry
+// has multiplied into the weights.
+//
+// In 3D, `Finite element/Volumetric formulation = mean dilatation` replaces
+// the volumetric energy $U(J)$ at each quadrature point by $V_e\,U(\Theta_e)$
+// per cell, with the cell's mean volume ratio $\Theta_e = V_e^{-1}\int_e
+// J\,dV$: the three-field formulation with pressure and dilatation constant
+// per cell, condensed cell by cell (see doc/introduction.md). With
+// quadratic elements it does not lock as $\kappa/\mu$ grows; the cell's
+// pressure $U'(\Theta_e)$ enters the stress at every point of the cell, and
+// the tangent gets the rank-one term $U''(\Theta_e)/V_e\;\mathbf g\mathbf
+// g^T$ with the derivative $\mathbf g$ of the cell's volume.
+//
+// A quadrature point with $\det\mathbf F\le 0$ has no physical meaning: it
+// is reported in the contribution, and the caller rejects the state.
+//
+// Implemented in source/physics/hyperelastic_solid.cc.
+
+#ifndef soft_robot_physics_hyperelastic_solid_h
+#define soft_robot_physics_hyperelastic_solid_h
+
+#include <assembly/cell_contribution.h>
+#include <core/parameters.h>
+#include <material/neo_hookean_energy.h>
+#include <physics/cell_geometry.h>
+
+#include <map>
+#include <utility>
+#include <vector>
+
+namespace SoftRobot
+{
+  template <int dim>
+  class HyperelasticSolid
+  {
+  public:
+    // The materials of the parameter file, on the cells of `geometry`
+    // (which must outlive this object).
+    HyperelasticSolid(const Parameters::AllParameters &parameters,
+                      const CellGeometry<dim>         &geometry);
+
+    // Whether any material has a damping coefficient.
+    bool
+    has_damping() const
+    {
+      return damped;
+    }
+
+    // The integral over the cell `local.cell`, whose displacement values
+    // are `local.input_values[0]`: the internal force, and as requested the
+    // tangent stiffness (`matrix`) and the damping matrix (`second_matrix`).
+    void
+    cell_contribution(CellContribution<dim> &local) const;
+
+    // The averages over the cell's quadrature points of the volume ratio
+    // $J$ and of the Cauchy stress, for the output (with the
+    // mean-dilatation formulation the pressure is that of the cell's mean
+    // volume ratio, as in the assembly).
+    std::pair<double, SymmetricTensor<2, dim>>
+    cell_averages(const unsigned int cell, const double *cell_u) const;
+
+    // The law of a material id.
+    const NeoHookeanEnergy<dim> &
+    material(const types::material_id id) const
+    {
+      return laws.at(id);
+    }
+
+    // Whether the mean-dilatation formulation is used.
+    bool
+    uses_mean_dilatation() const
+    {
+      return mean_dilatation;
+    }
+
+  private:
+    // The cell's displacement gradients at its quadrature points, from
+    // its nodal values.
+    void
+    displacement_gradients(const unsigned int           cell,
+                           const double                *cell_u,
+                           std::vector<Tensor<2, dim>> &H) const;
+
+    // The condensed pressure of the mean-dilatation formulation.
+    struct CellPressure
+    {
+      double pressure             = 0.;
+      double volumetric_stiffness = 0.;
+      double volume               = 0.;
+    };
+    CellPressure
+    cell_pressure(const unsigned int                 cell,
+                  const std::vector<Tensor<2, dim>> &H,
+                  CellContribution<dim>             &local) const;
+
+    // The contribution of quadrature point q.
+    void
+    add_point_contribution(const unsigned int     q,
+                           const Tensor<2, dim>  &H,
+                           const CellPressure    &pressure,
+                           MaterialResponse<dim> &response,
+                           CellContribution<dim> &local) const;
+
+    const CellGeometry<dim> &geometry;
+    const bool               mean_dilatation;
+    bool                     damped = false;
+    std::map<types::material_id, NeoHookeanEnergy<dim>> laws;
+    // Per cell: its law and damping coefficient $\zeta$.
+    std::vector<const NeoHookeanEnergy<dim> *> cell_law;
+    std::vector<double>                        cell_zeta;
+  };
+} // namespace SoftRobot
+
+#endif

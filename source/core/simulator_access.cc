@@ -1,0 +1,217 @@
+// @sect3{Access to the simulator's internals}
+//
+// See include/core/simulator_access.h.
+
+#include <core/config.h>
+#include <core/simulator_access.h>
+
+namespace SoftRobot
+{
+  template <int dim>
+  SimulatorAccess<dim>::SimulatorAccess(SoftRobotDynamics<dim> &simulator)
+    : simulator(simulator)
+  {}
+
+  template <int dim>
+  void
+  SimulatorAccess<dim>::make_grid()
+  {
+    simulator.make_grid();
+  }
+
+  template <int dim>
+  void
+  SimulatorAccess<dim>::setup_system()
+  {
+    simulator.setup_system();
+  }
+
+  template <int dim>
+  void
+  SimulatorAccess<dim>::solve_static_equilibrium(const double time)
+  {
+    simulator.solve_static_equilibrium(time);
+  }
+
+  template <int dim>
+  void
+  SimulatorAccess<dim>::initialize_state()
+  {
+    simulator.initialize_state();
+  }
+
+  template <int dim>
+  bool
+  SimulatorAccess<dim>::advance_one_step()
+  {
+    return simulator.advance_one_step();
+  }
+
+  template <int dim>
+  void
+  SimulatorAccess<dim>::set_body_force(
+    const std::shared_ptr<Function<dim>> &force)
+  {
+    simulator.body_force = force;
+  }
+
+  template <int dim>
+  const DoFHandler<dim> &
+  SimulatorAccess<dim>::get_dof_handler() const
+  {
+    return simulator.dof_handler;
+  }
+
+  template <int dim>
+  const Mapping<dim> &
+  SimulatorAccess<dim>::get_mapping() const
+  {
+    return *simulator.mapping;
+  }
+
+  template <int dim>
+  const AffineConstraints<double> &
+  SimulatorAccess<dim>::get_constraints() const
+  {
+    return simulator.constraints;
+  }
+
+  template <int dim>
+  double
+  SimulatorAccess<dim>::time() const
+  {
+    return simulator.current.time;
+  }
+
+  template <int dim>
+  const TrilinosWrappers::MPI::Vector &
+  SimulatorAccess<dim>::displacement() const
+  {
+    return simulator.current.u;
+  }
+
+  template <int dim>
+  const TrilinosWrappers::MPI::Vector &
+  SimulatorAccess<dim>::velocity() const
+  {
+    return simulator.current.v;
+  }
+
+  template <int dim>
+  const TrilinosWrappers::MPI::Vector &
+  SimulatorAccess<dim>::acceleration() const
+  {
+    return simulator.current.a;
+  }
+
+  template <int dim>
+  std::pair<Tensor<1, dim>, Tensor<1, dim>>
+  SimulatorAccess<dim>::tip_motion() const
+  {
+    return simulator.tip_region.motion(simulator.current.u,
+                                       simulator.current.v);
+  }
+
+  template <int dim>
+  const EnergyAccount &
+  SimulatorAccess<dim>::energies() const
+  {
+    return simulator.energy;
+  }
+
+  template <int dim>
+  Tensor<1, 3>
+  SimulatorAccess<dim>::angular_momentum() const
+  {
+    return simulator.angular_momentum();
+  }
+
+  // The tangent at the current state is the state's stiffness, from which
+  // the next step's matrix may be formed; at another u it is not, and the
+  // damping matrix of the state is left as it is.
+  template <int dim>
+  const TrilinosWrappers::SparseMatrix &
+  SimulatorAccess<dim>::tangent_stiffness_matrix()
+  {
+    TrilinosWrappers::MPI::Vector force(simulator.locally_owned_dofs,
+                                        simulator.mpi_communicator);
+    simulator.assemble_internal_force(simulator.current.u, true, force);
+    simulator.system_matrix_is_state_stiffness = true;
+    return simulator.system_matrix;
+  }
+
+  template <int dim>
+  const TrilinosWrappers::SparseMatrix &
+  SimulatorAccess<dim>::tangent_stiffness_matrix(
+    const TrilinosWrappers::MPI::Vector &u)
+  {
+    TrilinosWrappers::MPI::Vector force(simulator.locally_owned_dofs,
+                                        simulator.mpi_communicator);
+    simulator.assemble_internal_force(u, true, force, false);
+    simulator.system_matrix_is_state_stiffness = false;
+    return simulator.system_matrix;
+  }
+
+  template <int dim>
+  double
+  SimulatorAccess<dim>::internal_force(const TrilinosWrappers::MPI::Vector &u,
+                                       TrilinosWrappers::MPI::Vector &force)
+  {
+    return simulator.assemble_internal_force(u, false, force).strain_energy;
+  }
+
+  template <int dim>
+  const TrilinosWrappers::SparseMatrix &
+  SimulatorAccess<dim>::mass_matrix() const
+  {
+    return simulator.inertia.mass;
+  }
+
+  template <int dim>
+  unsigned int
+  SimulatorAccess<dim>::n_steps() const
+  {
+    return simulator.counters.steps;
+  }
+
+  template <int dim>
+  unsigned int
+  SimulatorAccess<dim>::n_newton_iterations() const
+  {
+    return simulator.counters.newton_iterations;
+  }
+
+  template <int dim>
+  unsigned int
+  SimulatorAccess<dim>::n_tangent_updates() const
+  {
+    return simulator.linear_solver.n_preparations();
+  }
+
+  template <int dim>
+  unsigned int
+  SimulatorAccess<dim>::n_linear_iterations() const
+  {
+    return simulator.counters.linear_iterations;
+  }
+
+  template <int dim>
+  double
+  SimulatorAccess<dim>::multigrid_operator_complexity() const
+  {
+    return simulator.linear_solver.multigrid_operator_complexity();
+  }
+
+  template <int dim>
+  std::string
+  SimulatorAccess<dim>::linear_solver_in_use() const
+  {
+    return simulator.linear_solver.solver_in_use();
+  }
+
+
+
+#define SOFT_ROBOT_INSTANTIATE(dim) template class SimulatorAccess<dim>;
+  SOFT_ROBOT_FOR_EACH_DIMENSION(SOFT_ROBOT_INSTANTIATE)
+#undef SOFT_ROBOT_INSTANTIATE
+} // namespace SoftRobot

@@ -1,0 +1,610 @@
+// @sect3{SoftRobotDynamics: the initial state and the time step}
+//
+// This file holds the phases of SoftRobotDynamics that compute the motion:
+// the initial state (including a static equilibrium), one HHT step with its
+// automatic cut-back, the assemblies they call, and the energy balance.
+
+#include <core/config.h>
+#include <core/soft_robot_dynamics.h>
+#include <deal.II/fe/fe_values.h>
+#include <deal.II/lac/solver_cg.h>
+#include <deal.II/lac/solver_control.h>
+#include <deal.II/lac/trilinos_precondition.h>
+#include <deal.II/numerics/vector_tools.h>
+
+#include <sstream>
+
+namespace SoftRobot
+{
+  // @sect4{SoftRobotDynamics::assemble_internal_force}
+  //
+  // The physics of HyperelasticSolid on every cell, added by the global
+  // assembler.
+  template <int dim>
+  AssemblyResult
+  SoftRobotDynamics<dim>::assemble_internal_force(
+    const TrilinosWrappers::MPI::Vector &u,
+    const bool                           with_matrix,
+    TrilinosWrappers::MPI::Vector       &internal_force,
+    const bool                           with_damping_matrix)
+  {
+    TimerOutput::Scope timer_section(computing_timer,
+                                     with_matrix ? "Assemble system" :
+                                                   "Assemble residual");
+    AssemblyRequest request;
+    request.matrix = with_matrix;
+    request.second_matrix =
+      with_matrix && solid->has_damping() && with_damping_matrix;
+    typename SystemAssembler<dim>::Targets targets;
+    targets.force         = &internal_force;
+    targets.matrix        = &system_matrix;
+    targets.second_matrix = &next_damping_matrix;
+    return assembler->assemble(
+      [this](CellContribution<dim> &local) { solid->cell_contribution(local); },
+      {&u},
+      request,
+      targets);
+  }
+
+
+
+  // @sect4{SoftRobotDynamics::assemble_external_force}
+  //
+  // Gravity (assembled once with the mass matrix) plus the nominal
+  // tractions on the boundaries the parameter file names and the body force
+  // of the tests, if any, all scaled by the load factor of the static solve
+  // (one during the time loop). The body force $\mathbf b(\mathbf X, t)$ per
+  // unit reference volume is added to gravity and scaled like it by the
+  // section of the reduced models; its work is booked with that of the
+  // tractions.
+  template <int dim>
+  void
+  SoftRobotDynamics<dim>::assemble_external_force(
+    const double                   time,
+    const double                   load_factor,
+    TrilinosWrappers::MPI::Vector &force) const
+  {
+    force = inertia.gravity_force;
+    if (!traction.empty())
+      {
+        TimerOutput::Scope timer_section(computing_timer, "Assemble tractions");
+        TrilinosWrappers::MPI::Vector traction_force(locally_owned_dofs,
+                                                     mpi_communicator);
+        traction.add_forces(time, constraints, traction_force);
+        traction_force.compress(VectorOperation::add);
+        force += traction_force;
+      }
+    if (body_force)
+      {
+        TimerOutput::Scope timer_section(computing_timer,
+                                         "Assemble body force");
+        TrilinosWrappers::MPI::Vector body_force_vector(locally_owned_dofs,
+                                                        mpi_communicator);
+        FEValues<dim>                 fe_values(*mapping,
+                                *fe,
+                                *mass_quadrature,
+                                update_values | update_quadrature_points |
+                                  update_JxW_values);
+        const FEValuesExtractors::Vector displacements(0);
+        const unsigned int               dofs_per_cell = fe->n_dofs_per_cell();
+        Vector<double>                   cell_force(dofs_per_cell);
+        std::vector<types::global_dof_index> dof_indices(dofs_per_cell);
+        Vector<double>                       value(dim);
+        body_force->set_time(time);
+        for (const auto &cell : dof_handler.active_cell_iterators())
+          if (cell->is_locally_owned())
+            {
+              fe_values.reinit(cell);
+              cell_force = 0.;
+              const double section =
+                parameters.by_id.at(cell->material_id()).section;
+              for (const unsigned int q : fe_values.quadrature_point_indices())
+                {
+                  body_force->vector_value(fe_values.quadrature_point(q), value);
+                  Tensor<1, dim> b;
+                  for (unsigned int d = 0; d < dim; ++d)
+                    b[d] = value[d];
+                  for (const unsigned int i : fe_values.dof_indices())
+                    cell_force(i) += fe_values[displacements].value(i, q) * b *
+                                     fe_values.JxW(q) * section;
+                }
+              cell->get_dof_indices(dof_indices);
+              constraints.distribute_local_to_global(cell_force,
+                                                     dof_indices,
+                                                     body_force_vector);
+            }
+        body_force_vector.compress(VectorOperation::add);
+        force += body_force_vector;
+      }
+    force *= load_factor;
+  }
+
+
+
+  // @sect4{SoftRobotDynamics::newton_problem}
+  //
+  // What Newton's method needs of a problem: its residual, and a solver for
+  // the tangent that the residual's evaluation left in system_matrix. The
+  // solution of a linear system vanishes at the constrained dofs. The
+  // linear iterations are counted here, so that those of a step that fails
+  // and is cut back are counted too.
+  template <int dim>
+  NewtonSolver::Problem
+  SoftRobotDynamics<dim>::newton_problem(
+    const std::function<AssemblyResult(const TrilinosWrappers::MPI::Vector &,
+                                       const bool,
+                                       TrilinosWrappers::MPI::Vector &)>
+      &evaluate)
+  {
+    NewtonSolver::Problem problem;
+    problem.evaluate        = evaluate;
+    problem.prepare_tangent = [this]() { linear_solver.prepare(system_matrix); };
+    problem.solve           = [this](const TrilinosWrappers::MPI::Vector &rhs,
+                           TrilinosWrappers::MPI::Vector       &solution) {
+      const unsigned int iterations = linear_solver.solve(rhs, solution);
+      constraints.set_zero(solution);
+      counters.linear_iterations += iterations;
+      return iterations;
+    };
+    return problem;
+  }
+
+
+
+  // @sect4{SoftRobotDynamics::solve_static_equilibrium}
+  //
+  // The equilibrium $\mathbf f_\text{int}(\mathbf u, \mathbf 0) =
+  // \lambda_g\mathbf f_g + \lambda_t\mathbf f_t(t)$ under gravity $\mathbf
+  // f_g$ and the tractions $\mathbf f_t$, reached in two phases of equal
+  // load steps: first the gravity factor $\lambda_g$ rises to one, then the
+  // traction factor $\lambda_t$. The order matters for a hanging body pushed
+  // sideways: under its weight it has the lateral (pendulum) stiffness of
+  // gravity, which the unloaded body lacks, and Newton's method started
+  // from the unloaded state would take a first step far beyond the
+  // equilibrium. A load step whose Newton iteration fails is halved. The
+  // line search decreases the total potential energy, whose minimum the
+  // equilibrium is.
+  template <int dim>
+  void
+  SoftRobotDynamics<dim>::solve_static_equilibrium(const double time)
+  {
+    TrilinosWrappers::MPI::Vector traction_force(locally_owned_dofs,
+                                                 mpi_communicator);
+    assemble_external_force(time, 1., traction_force);
+    traction_force -= inertia.gravity_force;
+    const bool has_gravity  = inertia.gravity_force.l2_norm() > 0.;
+    const bool has_traction = traction_force.l2_norm() > 0.;
+
+    TrilinosWrappers::MPI::Vector external(traction_force);
+    TrilinosWrappers::MPI::Vector internal(traction_force);
+    const NewtonSolver::Problem   problem = newton_problem(
+      [&](const TrilinosWrappers::MPI::Vector &u,
+          const bool                           with_matrix,
+          TrilinosWrappers::MPI::Vector       &r) {
+        AssemblyResult assembly =
+          assemble_internal_force(u, with_matrix, internal, false);
+        system_matrix_is_state_stiffness = false;
+        r = internal;
+        r -= external;
+        assembly.force_scale      = internal.l2_norm();
+        assembly.potential_energy = assembly.strain_energy - external * u;
+        constraints.set_zero(r);
+        return assembly;
+      });
+
+    // The combined load parameter runs from 0 to 2: gravity factor
+    // min(lambda, 1), traction factor max(lambda - 1, 0).
+    double       load      = has_gravity ? 0. : 1.;
+    const double end       = has_traction ? 2. : 1.;
+    double       increment = 1. / parameters.load_steps;
+    while (load < end - 1e-12)
+      {
+        const double phase_end = (load < 1. - 1e-12) ? 1. : 2.;
+        const double target    = std::min(phase_end, load + increment);
+        external               = 0.;
+        external.add(std::min(target, 1.), inertia.gravity_force);
+        external.add(std::max(target - 1., 0.), traction_force);
+        const TrilinosWrappers::MPI::Vector saved = current.u;
+        try
+          {
+            const NewtonSolver::Result result =
+              newton_solver.solve(current.u, problem, external.l2_norm(), false);
+            counters.newton_iterations += result.iterations;
+            counters.last_residual = result.residual;
+            load                   = target;
+            if (std::abs(load - phase_end) < 1e-12)
+              increment = 1. / parameters.load_steps;
+          }
+        catch (StepFailure &failure)
+          {
+            current.u = saved;
+            increment *= 0.5;
+            if (increment < 1e-4)
+              throw RunAborted("The static equilibrium at t = " +
+                               std::to_string(time) +
+                               " could not be found: " + failure.what());
+          }
+      }
+    pcout << "Static equilibrium found (gravity, then tractions, in "
+          << parameters.load_steps << " load steps each; last residual "
+          << counters.last_residual << ")" << std::endl;
+  }
+
+
+
+  // @sect4{SoftRobotDynamics::compute_initial_acceleration}
+  //
+  // The HHT method needs $\mathbf a_0$, which the equation of motion at
+  // $t=0$ determines: $\mathbf M\mathbf a_0 = \mathbf f_\text{ext}(0) -
+  // \mathbf f_\text{int}(\mathbf u_0) - \mathbf C\mathbf v_0$.
+  template <int dim>
+  void
+  SoftRobotDynamics<dim>::compute_initial_acceleration()
+  {
+    const AssemblyResult assembly =
+      assemble_internal_force(current.u, true, current.internal_force);
+    system_matrix_is_state_stiffness = true;
+    if (solid->has_damping())
+      {
+        damping_matrix.copy_from(next_damping_matrix);
+        damping_matrix.vmult(current.damping_force, current.v);
+      }
+    else
+      current.damping_force = 0.;
+    if (assembly.inverted_point_found)
+      throw RunAborted("The initial displacement inverts elements (det F = " +
+                       std::to_string(assembly.min_jacobian) + ").");
+    energy.strain = assembly.strain_energy;
+
+    TrilinosWrappers::MPI::Vector rhs(current.external_force);
+    rhs -= current.internal_force;
+    rhs -= current.damping_force;
+    constraints.set_zero(rhs);
+    SolverControl control(1000, 1e-12 * std::max(rhs.l2_norm(), 1e-300));
+    SolverCG<TrilinosWrappers::MPI::Vector> solver(control);
+    TrilinosWrappers::PreconditionJacobi    jacobi;
+    jacobi.initialize(inertia.mass);
+    current.a = 0.;
+    if (rhs.l2_norm() > 0)
+      solver.solve(inertia.mass, current.a, rhs, jacobi);
+    constraints.set_zero(current.a);
+  }
+
+
+
+  // @sect4{SoftRobotDynamics::initialize_state}
+  template <int dim>
+  void
+  SoftRobotDynamics<dim>::initialize_state()
+  {
+    TimerOutput::Scope timer_section(computing_timer, "Initial state");
+    current.time      = 0.;
+    stiffness_history = StiffnessHistory();
+    VectorTools::interpolate(*mapping,
+                             dof_handler,
+                             initial_displacement,
+                             current.u);
+    VectorTools::interpolate(*mapping, dof_handler, initial_velocity, current.v);
+    constraints.set_zero(current.u);
+    constraints.set_zero(current.v);
+
+    if (parameters.initial_state ==
+        Parameters::InitialConditions::InitialState::static_equilibrium)
+      solve_static_equilibrium(0.);
+
+    assemble_external_force(0., 1., current.external_force);
+    compute_initial_acceleration();
+
+    energy.kinetic             = 0.5 * inertia.mass.matrix_norm_square(current.v);
+    energy.gravity_potential   = -(inertia.gravity_force * current.u);
+    energy.traction_work       = 0.;
+    energy.damping_dissipation = 0.;
+    // The forces of the equation at t = 0, the first terms of the work and
+    // dissipation sums (see update_energies()).
+    hht_damping_force  = current.damping_force;
+    hht_traction_force = current.external_force;
+    hht_traction_force -= inertia.gravity_force;
+    initial_total_energy =
+      energy.kinetic + energy.strain + energy.gravity_potential;
+    counters.steps = 0;
+  }
+
+
+
+  // @sect4{SoftRobotDynamics::evaluate_residual}
+  //
+  // The HHT residual for a trial displacement $\mathbf u_{n+1}$: velocity
+  // and acceleration follow from Newmark's relations, and
+  // @f[
+  //   \mathbf r = \mathbf M\mathbf a_{n+1}
+  //   + (1+\alpha)\left[\mathbf f_\text{int}(\mathbf u_{n+1})
+  //     + \mathbf C\mathbf v_{n+1} - \mathbf f_\text{ext}(t_{n+1})\right]
+  //   - \alpha\left[\mathbf f_\text{int}(\mathbf u_n) + \mathbf C\mathbf v_n
+  //     - \mathbf f_\text{ext}(t_n)\right],
+  // @f]
+  // with the damping matrix $\mathbf C$ of the step. Its derivative, the
+  // effective tangent, is $\mathbf M/(\beta\Delta t^2) + (1+\alpha)(\mathbf K
+  // + c_v\mathbf C)$ with $c_v = \gamma/(\beta\Delta t)$. Newton's method
+  // proper assembles the damping matrix of every iterate (the last one's is
+  // the next step's); the modified one assembles it at the end of the step
+  // only, so a matrix here is only a new tangent.
+  template <int dim>
+  AssemblyResult
+  SoftRobotDynamics<dim>::evaluate_residual(
+    const TrilinosWrappers::MPI::Vector &u_trial,
+    const double                         dt,
+    const bool                           with_matrix,
+    TrilinosWrappers::MPI::Vector       &residual)
+  {
+    stepper.update_kinematics(
+      u_trial, previous.u, previous.v, previous.a, dt, current.v, current.a);
+    const bool every_iteration =
+      (parameters.tangent_update !=
+       Parameters::NonlinearSolver::TangentUpdate::every_step);
+    AssemblyResult assembly = assemble_internal_force(u_trial,
+                                                      with_matrix,
+                                                      current.internal_force,
+                                                      every_iteration);
+    if (with_matrix)
+      system_matrix_is_state_stiffness = false;
+    if (solid->has_damping())
+      damping_matrix.vmult(current.damping_force, current.v);
+    else
+      current.damping_force = 0.;
+
+    const double w = stepper.new_force_weight();
+    inertia.mass.vmult(residual, current.a);
+    assembly.force_scale =
+      std::max(residual.l2_norm(), current.internal_force.l2_norm());
+    residual.add(w, current.internal_force, w, current.damping_force);
+    residual.add(-w, current.external_force);
+    residual.add(1. - w, previous.internal_force, 1. - w, previous.damping_force);
+    residual.add(w - 1., previous.external_force);
+    constraints.set_zero(residual);
+
+    if (with_matrix)
+      {
+        system_matrix *= w;
+        if (solid->has_damping())
+          system_matrix.add(w * stepper.velocity_coefficient(dt),
+                            damping_matrix);
+        system_matrix.add(stepper.acceleration_coefficient(dt), inertia.mass);
+      }
+    return assembly;
+  }
+
+
+
+  // @sect4{SoftRobotDynamics::prepare_step_tangent}
+  //
+  // The matrix of the modified Newton method for a step of size dt:
+  // $\mathbf M/(\beta\Delta t^2) + (1+\alpha)(\tilde{\mathbf K} + c_v
+  // \mathbf C_n)$, with the damping matrix of the last converged state
+  // $\mathbf u_n$ and a stiffness $\tilde{\mathbf K}$ from the stiffness
+  // matrices of the converged states (assembled at the end of the previous
+  // step; after a failed step the system matrix holds something else, and
+  // the stiffness of $\mathbf u_n$ is assembled again).
+  //
+  // The iterations converge at a rate set by how far $\tilde{\mathbf K}$ is
+  // from the stiffness at the end of the step, $\mathbf K_{n+1}$, which
+  // they do not know. $\tilde{\mathbf K} = \mathbf K_n$ is off by
+  // $O(\Delta t)$; the linear extrapolation from the last two states,
+  // $\tilde{\mathbf K} = \mathbf K_n + \theta(\mathbf K_n - \mathbf
+  // K_{n-1})$ with $\theta = \Delta t_{n+1}/\Delta t_n$, is off by
+  // $O(\Delta t^2)$ for a smooth motion (parameter `Tangent
+  // extrapolation`, on by default). The two matrices are kept as copies,
+  // $\mathbf K_n$ recorded the first time a step starts from $\mathbf u_n$,
+  // so that a step repeated after a cut back extrapolates from the same
+  // pair. The residual is not changed, and with it the converged answer.
+  template <int dim>
+  void
+  SoftRobotDynamics<dim>::prepare_step_tangent(const double dt)
+  {
+    if (!system_matrix_is_state_stiffness)
+      {
+        TrilinosWrappers::MPI::Vector force(locally_owned_dofs,
+                                            mpi_communicator);
+        assemble_internal_force(previous.u, true, force, false);
+      }
+    StiffnessHistory &history = stiffness_history;
+    if (parameters.tangent_extrapolation)
+      {
+        if (history.newer_time != previous.time)
+          {
+            std::swap(history.older, history.newer);
+            std::swap(history.older_time, history.newer_time);
+            if (!history.newer)
+              history.newer = std::make_unique<TrilinosWrappers::SparseMatrix>();
+            history.newer->copy_from(system_matrix);
+            history.newer_time = previous.time;
+          }
+        if (history.older && history.older_time < previous.time)
+          {
+            const double theta = dt / (previous.time - history.older_time);
+            system_matrix *= 1. + theta;
+            system_matrix.add(-theta, *history.older);
+          }
+      }
+    const double w = stepper.new_force_weight();
+    system_matrix *= w;
+    if (solid->has_damping())
+      system_matrix.add(w * stepper.velocity_coefficient(dt), damping_matrix);
+    system_matrix.add(stepper.acceleration_coefficient(dt), inertia.mass);
+    system_matrix_is_state_stiffness = false;
+    linear_solver.prepare(system_matrix);
+  }
+
+
+
+  // @sect4{SoftRobotDynamics::solve_nonlinear_timestep}
+  //
+  // One HHT step of size dt from `previous` to `current`, starting Newton's
+  // method from the constant-acceleration predictor.
+  template <int dim>
+  void
+  SoftRobotDynamics<dim>::solve_nonlinear_timestep(const double dt)
+  {
+    current.time = previous.time + dt;
+    assemble_external_force(current.time, 1., current.external_force);
+    stepper.predict_displacement(
+      previous.u, previous.v, previous.a, dt, current.u);
+
+    const bool modified = (parameters.tangent_update ==
+                           Parameters::NonlinearSolver::TangentUpdate::every_step);
+    if (modified)
+      prepare_step_tangent(dt);
+
+    const NewtonSolver::Result result = newton_solver.solve(
+      current.u,
+      newton_problem([&](const TrilinosWrappers::MPI::Vector &u,
+                         const bool                           with_matrix,
+                         TrilinosWrappers::MPI::Vector       &r) {
+        return evaluate_residual(u, dt, with_matrix, r);
+      }),
+      current.external_force.l2_norm(),
+      modified);
+    counters.last_newton_iterations = result.iterations;
+    counters.newton_iterations += result.iterations;
+    counters.last_residual = result.residual;
+    update_energies(result.assembly);
+  }
+
+
+
+  // @sect4{SoftRobotDynamics::update_energies}
+  //
+  // The energy balance of the step. Kinetic, strain and gravitational
+  // energy are state functions. The work of the tractions and the energy
+  // dissipated by the damping forces are accumulated over the displacement
+  // increments, with the forces the scheme actually applied. Step $k$'s
+  // equation of motion is $\mathbf M\mathbf a_k + \tilde{\mathbf F}_k = 0$
+  // with the HHT forces $\tilde{\mathbf F}_k = (1+\alpha)\mathbf F_k -
+  // \alpha\mathbf F_{k-1}$ (and $\tilde{\mathbf F}_0 = \mathbf F_0$, the
+  // equation at $t = 0$). The mean of the equations at both ends of a step,
+  // times the increment $\Delta\mathbf u$, is an exact identity:
+  // @f[
+  //   \Delta\mathbf u\cdot\mathbf M\tfrac12(\mathbf a_n + \mathbf a_{n+1})
+  //   + \Delta\mathbf u\cdot\tfrac12(\tilde{\mathbf f}_{\text{int},n} +
+  //   \tilde{\mathbf f}_{\text{int},n+1}) + \Delta D - \Delta W = 0,
+  // @f]
+  // with the damping and traction parts booked as $\Delta D = \Delta\mathbf
+  // u\cdot\tfrac12(\tilde{\mathbf f}_{\text{d},n} + \tilde{\mathbf
+  // f}_{\text{d},n+1})$ and $\Delta W$ alike. What the balance $\mathcal B =
+  // T + \Pi + V_g - W + D - (T + \Pi + V_g)_0$ then collects is $\Delta T -
+  // \Delta\mathbf u\cdot\mathbf M\tfrac12(\mathbf a_n + \mathbf a_{n+1})$
+  // and $\Delta\Pi - \Delta\mathbf u\cdot\tfrac12(\tilde{\mathbf
+  // f}_{\text{int},n} + \tilde{\mathbf f}_{\text{int},n+1})$ summed over
+  // the steps: the algorithmic dissipation of the scheme, from its Newmark
+  // parameters and from the shifted internal force, and nothing else. For
+  // $\alpha = 0$ the weights are the trapezoidal rule's, and for the
+  // trapezoidal rule on a linear problem both parts vanish. (Gravity is
+  // constant; its work is the change of $V_g$ exactly.)
+  template <int dim>
+  void
+  SoftRobotDynamics<dim>::update_energies(const AssemblyResult &assembly)
+  {
+    TrilinosWrappers::MPI::Vector increment(current.u);
+    increment -= previous.u;
+    // This step's HHT forces: damping (with this step's matrix, as in the
+    // residual) and tractions (the external forces less gravity).
+    const double                  w = stepper.new_force_weight();
+    TrilinosWrappers::MPI::Vector damping_force(current.damping_force);
+    damping_force.sadd(w, 1. - w, previous.damping_force);
+    TrilinosWrappers::MPI::Vector traction_force(current.external_force);
+    traction_force.sadd(w, 1. - w, previous.external_force);
+    traction_force -= inertia.gravity_force;
+
+    energy.kinetic           = 0.5 * inertia.mass.matrix_norm_square(current.v);
+    energy.strain            = assembly.strain_energy;
+    energy.gravity_potential = -(inertia.gravity_force * current.u);
+    energy.traction_work +=
+      0.5 * (increment * traction_force + increment * hht_traction_force);
+    energy.damping_dissipation +=
+      0.5 * (increment * damping_force + increment * hht_damping_force);
+    hht_damping_force  = damping_force;
+    hht_traction_force = traction_force;
+  }
+
+
+
+  // @sect4{SoftRobotDynamics::advance_one_step}
+  //
+  // One step of the time loop with automatic step-size control (see
+  // TimeStepController): a failed step is repeated with half the time
+  // step. The damping forces of the old state are computed with this
+  // step's damping matrix, so that the damping is linear within the step.
+  // After the step, the damping matrix of the converged state becomes the
+  // next step's. Newton's method proper assembled it in its last iteration;
+  // the modified one assembled residuals only, and the stiffness and
+  // damping of the new state are assembled here, once per step (the
+  // stiffness is the next step's matrix).
+  template <int dim>
+  bool
+  SoftRobotDynamics<dim>::advance_one_step()
+  {
+    if (step_controller.finished(current.time))
+      return false;
+
+    previous = current;
+    if (solid->has_damping())
+      damping_matrix.vmult(previous.damping_force, previous.v);
+    while (true)
+      {
+        const double dt = step_controller.next_step(previous.time);
+        try
+          {
+            solve_nonlinear_timestep(dt);
+            break;
+          }
+        catch (StepFailure &failure)
+          {
+            current = previous;
+            step_controller.record_failure(previous.time, dt, failure.what());
+          }
+      }
+    ++counters.steps;
+    if (parameters.tangent_update ==
+        Parameters::NonlinearSolver::TangentUpdate::every_step)
+      {
+        assemble_internal_force(current.u, true, current.internal_force);
+        system_matrix_is_state_stiffness = true;
+      }
+    if (solid->has_damping())
+      damping_matrix.copy_from(next_damping_matrix);
+    step_controller.record_success(current.time);
+    return true;
+  }
+
+
+
+  // The explicit instantiations of this file's member functions.
+#define SOFT_ROBOT_INSTANTIATE(dim)                                           \
+  template AssemblyResult SoftRobotDynamics<dim>::assemble_internal_force(   \
+    const TrilinosWrappers::MPI::Vector &,                                    \
+    const bool,                                                               \
+    TrilinosWrappers::MPI::Vector &,                                          \
+    const bool);                                                              \
+  template void SoftRobotDynamics<dim>::assemble_external_force(              \
+    const double, const double, TrilinosWrappers::MPI::Vector &) const;       \
+  template NewtonSolver::Problem SoftRobotDynamics<dim>::newton_problem(     \
+    const std::function<AssemblyResult(const TrilinosWrappers::MPI::Vector &, \
+                                       const bool,                            \
+                                       TrilinosWrappers::MPI::Vector &)> &);  \
+  template void SoftRobotDynamics<dim>::solve_static_equilibrium(             \
+    const double);                                                            \
+  template void SoftRobotDynamics<dim>::compute_initial_acceleration();       \
+  template void SoftRobotDynamics<dim>::initialize_state();                   \
+  template AssemblyResult SoftRobotDynamics<dim>::evaluate_residual(         \
+    const TrilinosWrappers::MPI::Vector &,                                    \
+    const double,                                                             \
+    const bool,                                                               \
+    TrilinosWrappers::MPI::Vector &);                                         \
+  template void SoftRobotDynamics<dim>::prepare_step_tangent(const double);   \
+  template void SoftRobotDynamics<dim>::solve_nonlinear_timestep(             \
+    const double);                                                            \
+  template void SoftRobotDynamics<dim>::update_energies(                      \
+    const AssemblyResult &);                                                  \
+  template bool SoftRobotDynamics<dim>::advance_one_step();
+  SOFT_ROBOT_FOR_EACH_DIMENSION(SOFT_ROBOT_INSTANTIATE)
+#undef SOFT_ROBOT_INSTANTIATE
+} // namespace SoftRobot

@@ -1,0 +1,293 @@
+// @sect3{The hyperelastic solid: what one cell contributes}
+//
+// See include/physics/hyperelastic_solid.h for the formulas.
+
+#include <core/config.h>
+#include <physics/hyperelastic_solid.h>
+
+namespace SoftRobot
+{
+  // @sect4{HyperelasticSolid::HyperelasticSolid}
+  template <int dim>
+  HyperelasticSolid<dim>::HyperelasticSolid(
+    const Parameters::AllParameters &parameters,
+    const CellGeometry<dim>         &geometry)
+    : geometry(geometry)
+    , mean_dilatation(
+        (dim == 3) &&
+        (parameters.volumetric_formulation ==
+         Parameters::FiniteElement::VolumetricFormulation::mean_dilatation))
+  {
+    for (const auto &[id, material] : parameters.by_id)
+      {
+        laws.emplace(id,
+                     NeoHookeanEnergy<dim>(material.shear_modulus,
+                                           material.bulk_modulus));
+        damped = damped || (material.damping_zeta > 0.);
+      }
+    for (const types::material_id id : geometry.material_ids)
+      {
+        cell_law.push_back(&laws.at(id));
+        cell_zeta.push_back(parameters.by_id.at(id).damping_zeta);
+      }
+  }
+
+
+
+  // @sect4{HyperelasticSolid::displacement_gradients}
+  //
+  // $\mathbf H = \nabla_0\mathbf u = \sum_i u_i\,\mathbf e_{c_i}\otimes
+  // \nabla_0\varphi_i$ at every quadrature point of the cell.
+  template <int dim>
+  void
+  HyperelasticSolid<dim>::displacement_gradients(
+    const unsigned int           cell,
+    const double                *cell_u,
+    std::vector<Tensor<2, dim>> &H) const
+  {
+    const unsigned int               n_q  = geometry.n_q_points;
+    const unsigned int               n    = geometry.dofs_per_cell;
+    const std::vector<unsigned int> &comp = geometry.components;
+    H.assign(n_q, Tensor<2, dim>());
+    for (unsigned int q = 0; q < n_q; ++q)
+      {
+        const Tensor<1, dim> *grad_phi = geometry.gradients(cell, q);
+        for (unsigned int i = 0; i < n; ++i)
+          H[q][comp[i]] += cell_u[i] * grad_phi[i];
+      }
+  }
+
+
+
+  // @sect4{HyperelasticSolid::cell_pressure}
+  //
+  // The mean-dilatation formulation (see the class documentation): the
+  // cell's mean volume ratio $\Theta = 1 + t$, its volumetric energy
+  // $V_e\,U(\Theta)$, the pressure $p = U'(\Theta)$ every point of the cell
+  // feels, and $U''(\Theta)/V_e$ for the tangent.
+  template <int dim>
+  typename HyperelasticSolid<dim>::CellPressure
+  HyperelasticSolid<dim>::cell_pressure(const unsigned int cell,
+                                        const std::vector<Tensor<2, dim>> &H,
+                                        CellContribution<dim> &local) const
+  {
+    CellPressure result;
+    if (!mean_dilatation)
+      return result;
+    const NeoHookeanEnergy<dim> &law           = *cell_law[cell];
+    double                       volume_change = 0.;
+    for (unsigned int q = 0; q < geometry.n_q_points; ++q)
+      {
+        const double JxW = geometry.weight(cell, q);
+        result.volume += JxW;
+        volume_change += NeoHookeanEnergy<dim>::volume_change(
+                           NeoHookeanEnergy<dim>::green_lagrange_strain(H[q])) *
+                         JxW;
+      }
+    const double t = volume_change / result.volume;
+    if (!(t > -1.))
+      local.inverted = true;
+    else
+      {
+        result.pressure             = law.volumetric_pressure(t);
+        result.volumetric_stiffness = law.volumetric_stiffness(t);
+        local.strain_energy += law.volumetric_energy(t) * result.volume;
+      }
+    if (local.request.matrix)
+      local.workspace.volume_gradient.reinit(geometry.dofs_per_cell);
+    return result;
+  }
+
+
+
+  // @sect4{HyperelasticSolid::add_point_contribution}
+  //
+  // The point's share of the force, and of the lower triangles of the
+  // tangent and the damping matrix. The damping uses the positive
+  // semi-definite part of the material tangent (see
+  // positive_semidefinite_part()). With the mean-dilatation formulation the
+  // point also adds to the derivative of the cell's volume,
+  // $\partial(V_e\Theta)/\partial u_i = \int (\mathrm{cof}\,\mathbf
+  // F)_{c_i}\cdot\nabla_0\varphi_i\,dV$, for the rank-one part of the
+  // tangent.
+  template <int dim>
+  void
+  HyperelasticSolid<dim>::add_point_contribution(
+    const unsigned int     q,
+    const Tensor<2, dim>  &H,
+    const CellPressure    &pressure,
+    MaterialResponse<dim> &response,
+    CellContribution<dim> &local) const
+  {
+    const unsigned int               cell     = local.cell;
+    const unsigned int               n        = geometry.dofs_per_cell;
+    const std::vector<unsigned int> &comp     = geometry.components;
+    const Tensor<1, dim>            *grad_phi = geometry.gradients(cell, q);
+    const double                     JxW      = geometry.weight(cell, q);
+    const NeoHookeanEnergy<dim>     &law      = *cell_law[cell];
+    const bool                       with_matrix = local.request.matrix;
+    std::vector<SymmetricTensor<2, dim>> &delta_E = local.workspace.delta_E;
+
+    Tensor<2, dim> F = H;
+    for (unsigned int d = 0; d < dim; ++d)
+      F[d][d] += 1.;
+    const double J     = determinant(F);
+    local.min_jacobian = std::min(local.min_jacobian, J);
+    if (!(J > 0.) || local.inverted)
+      {
+        local.inverted = true;
+        return;
+      }
+    if (mean_dilatation)
+      law.evaluate_with_pressure(H, pressure.pressure, with_matrix, response);
+    else if (with_matrix)
+      law.evaluate(H, response);
+    else
+      law.evaluate_stress(H, response);
+    local.strain_energy += response.energy * JxW;
+
+    if (mean_dilatation && with_matrix)
+      {
+        const Tensor<2, dim> cofactor = J * transpose(invert(F));
+        for (unsigned int i = 0; i < n; ++i)
+          local.workspace.volume_gradient(i) +=
+            (cofactor[comp[i]] * grad_phi[i]) * JxW;
+      }
+
+    const SymmetricTensor<2, dim> &S = response.second_piola;
+    for (unsigned int i = 0; i < n; ++i)
+      {
+        const Tensor<1, dim> f_c = F[comp[i]];
+        local.force(i) += (f_c * (S * grad_phi[i])) * JxW;
+        if (with_matrix)
+          delta_E[i] = symmetrize(outer_product(f_c, grad_phi[i]));
+      }
+    if (!with_matrix)
+      return;
+
+    const double            zeta   = cell_zeta[cell];
+    const bool              damped = local.request.second_matrix && zeta > 0.;
+    SymmetricTensor<4, dim> damping_tangent;
+    if (damped)
+      damping_tangent = positive_semidefinite_part(response.material_tangent);
+    for (unsigned int i = 0; i < n; ++i)
+      {
+        const SymmetricTensor<2, dim> C_dE_i =
+          response.material_tangent * delta_E[i];
+        const Tensor<1, dim> S_grad_phi_i = S * grad_phi[i];
+        for (unsigned int j = 0; j <= i; ++j)
+          {
+            double value = C_dE_i * delta_E[j];
+            if (comp[i] == comp[j])
+              value += S_grad_phi_i * grad_phi[j];
+            local.matrix(i, j) += value * JxW;
+          }
+        if (damped)
+          {
+            const SymmetricTensor<2, dim> D_dE_i = damping_tangent * delta_E[i];
+            for (unsigned int j = 0; j <= i; ++j)
+              local.second_matrix(i, j) += zeta * (D_dE_i * delta_E[j]) * JxW;
+          }
+      }
+  }
+
+
+
+  // @sect4{HyperelasticSolid::cell_contribution}
+  //
+  // The points' contributions, then the rank-one term of the condensed
+  // pressure and dilatation, $U''(\Theta)/V_e\;\mathbf g\mathbf g^T$ with
+  // the volume derivative $\mathbf g$: it is positive semi-definite and
+  // belongs to the material part, so the damping matrix gets it too. The
+  // matrices are symmetric; only their lower triangles are computed, and
+  // copied into the upper ones at the end.
+  template <int dim>
+  void
+  HyperelasticSolid<dim>::cell_contribution(CellContribution<dim> &local) const
+  {
+    const unsigned int n    = geometry.dofs_per_cell;
+    const unsigned int cell = local.cell;
+    local.workspace.delta_E.resize(n);
+    std::vector<Tensor<2, dim>> &H = local.workspace.displacement_gradients;
+    displacement_gradients(cell, local.input_values[0], H);
+
+    const CellPressure    pressure = cell_pressure(cell, H, local);
+    MaterialResponse<dim> response;
+    for (unsigned int q = 0; q < geometry.n_q_points; ++q)
+      add_point_contribution(q, H[q], pressure, response, local);
+
+    if (!local.request.matrix)
+      return;
+    if (mean_dilatation && !local.inverted)
+      {
+        const Vector<double> &g      = local.workspace.volume_gradient;
+        const double          factor = pressure.volumetric_stiffness /
+                                       pressure.volume;
+        const double          zeta   = cell_zeta[cell];
+        const bool damped = local.request.second_matrix && zeta > 0.;
+        for (unsigned int i = 0; i < n; ++i)
+          for (unsigned int j = 0; j <= i; ++j)
+            {
+              local.matrix(i, j) += factor * g(i) * g(j);
+              if (damped)
+                local.second_matrix(i, j) += zeta * factor * g(i) * g(j);
+            }
+      }
+    for (unsigned int i = 0; i < n; ++i)
+      for (unsigned int j = i + 1; j < n; ++j)
+        {
+          local.matrix(i, j)        = local.matrix(j, i);
+          local.second_matrix(i, j) = local.second_matrix(j, i);
+        }
+  }
+
+
+
+  // @sect4{HyperelasticSolid::cell_averages}
+  template <int dim>
+  std::pair<double, SymmetricTensor<2, dim>>
+  HyperelasticSolid<dim>::cell_averages(const unsigned int cell,
+                                        const double      *cell_u) const
+  {
+    std::vector<Tensor<2, dim>> H;
+    displacement_gradients(cell, cell_u, H);
+    const NeoHookeanEnergy<dim> &law      = *cell_law[cell];
+    double                       pressure = 0.;
+    if (mean_dilatation)
+      {
+        double volume = 0., volume_change = 0.;
+        for (unsigned int q = 0; q < geometry.n_q_points; ++q)
+          {
+            volume += geometry.weight(cell, q);
+            volume_change +=
+              NeoHookeanEnergy<dim>::volume_change(
+                NeoHookeanEnergy<dim>::green_lagrange_strain(H[q])) *
+              geometry.weight(cell, q);
+          }
+        pressure = law.volumetric_pressure(volume_change / volume);
+      }
+    MaterialResponse<dim>   response;
+    SymmetricTensor<2, dim> mean_sigma;
+    double                  mean_J = 0.;
+    for (const Tensor<2, dim> &G : H)
+      {
+        Tensor<2, dim> F = G;
+        for (unsigned int d = 0; d < dim; ++d)
+          F[d][d] += 1.;
+        if (mean_dilatation)
+          law.evaluate_with_pressure(G, pressure, false, response);
+        else
+          law.evaluate_stress(G, response);
+        mean_sigma += law.cauchy_stress(F, response.second_piola);
+        mean_J += determinant(F);
+      }
+    mean_sigma /= H.size();
+    return {mean_J / H.size(), mean_sigma};
+  }
+
+
+
+#define SOFT_ROBOT_INSTANTIATE(dim) template class HyperelasticSolid<dim>;
+  SOFT_ROBOT_FOR_EACH_DIMENSION(SOFT_ROBOT_INSTANTIATE)
+#undef SOFT_ROBOT_INSTANTIATE
+} // namespace SoftRobot
