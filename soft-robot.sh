@@ -18,7 +18,7 @@
 #                              extreme cases and write doc/stability.md
 #   ./soft-robot.sh locking    build in Release, run the locking study (linear
 #                              and quadratic elements, kappa/mu up to 1e4) and
-#                              write doc/locking.md (about 45 minutes)
+#                              write doc/locking.md
 #   ./soft-robot.sh error-vs-runtime
 #                              build in Release, run experiment 1 over meshes,
 #                              degrees, formulations and time steps (3D and
