@@ -247,6 +247,7 @@ def convert_file(root, path, previous, following, notes):
 def main_page(code_map, names):
     """doc/code-map.md with each file name linked to its page."""
     linked = dict(names)
+    linked.update((path, path) for _, path in names)
     lines = code_map.splitlines()
     title = lines[0][2:].strip() if lines[0].startswith("# ") else "SoftRobotDynamics"
     text = "\n".join(lines[1:])
