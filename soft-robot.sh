@@ -5,7 +5,9 @@
 #                              the vertical oscillation of the Dragon Skin 20
 #                              actuator in 3D and its reduced 1D and 2D scenes
 #   ./soft-robot.sh test       install what is missing, build in Debug (deal.II's
-#                              internal checks on), run the whole test suite
+#                              internal checks on), render the annotated source
+#                              (build-debug/doc/html/index.html; fails on any
+#                              doxygen warning), run the whole test suite
 #   ./soft-robot.sh validate   build in Release, run all thirty bellows scenes
 #                              (SOFT_ROBOT_JOBS at a time, default 2) and
 #                              write doc/validation.md
@@ -16,7 +18,7 @@
 #                              extreme cases and write doc/stability.md
 #   ./soft-robot.sh locking    build in Release, run the locking study (linear
 #                              and quadratic elements, kappa/mu up to 1e4) and
-#                              write doc/locking.md (about 45 minutes)
+#                              write doc/locking.md
 #   ./soft-robot.sh error-vs-runtime
 #                              build in Release, run experiment 1 over meshes,
 #                              degrees, formulations and time steps (3D and
@@ -64,8 +66,12 @@ case "${1:-}" in
     done
     ;;
   test)
+    # python3 for the check of doc/results.md; doxygen, LaTeX and
+    # Ghostscript for the annotated source (target doc).
+    packages+=(python3 doxygen texlive-latex-extra ghostscript)
     install_missing_packages
     build Debug build-debug -DSOFT_ROBOT_BUILD_TESTS=ON
+    cmake --build build-debug --target doc
     cd build-debug
     ctest --output-on-failure -j "$(nproc)"
     ;;

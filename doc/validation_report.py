@@ -6,8 +6,8 @@ Usage: /usr/bin/python3 doc/validation_report.py OUTPUT_DIR DOC_DIR
 Reads OUTPUT_DIR/<scene>/{tip_trajectory.csv, tip_spectrum.csv,
 tip_spectrum_magnitudes.csv, run.log, wall_seconds} for every scene and
 writes DOC_DIR/validation.md and DOC_DIR/figures/validation/<scene>.png.
-The hand-written DOC_DIR/validation_discussion.md, if present, is copied
-verbatim below the generated header.
+Below its header the report links to the hand-written discussion of the
+results, DOC_DIR/validation_discussion.md.
 
 All scenes are read and checked before anything is written; a missing or
 incomplete file stops the script with a message naming it. The markdown is
@@ -390,9 +390,8 @@ def header(runs, doc_dir):
         "initial state."
         % (git_description(repository), date, os.cpu_count(), cpu_model(),
            len(runs), os.environ.get("SOFT_ROBOT_JOBS", "2"), how), ""]
-    discussion = Path(doc_dir) / "validation_discussion.md"
-    if discussion.is_file():
-        lines += [discussion.read_text().rstrip("\n"), ""]
+    lines += ["The discussion of these results is in "
+              "[validation_discussion.md](validation_discussion.md).", ""]
     return lines
 
 

@@ -68,7 +68,7 @@ FIGURES = "doc/figures/error_vs_runtime"
 sys.path.insert(0, str(REPOSITORY / "doc" / "performance"))
 sys.path.insert(0, str(REPOSITORY / "doc" / "stability"))
 sys.path.insert(0, str(REPOSITORY / "doc"))
-from run_benchmarks import write_with_discussion  # noqa: E402
+from run_benchmarks import write_with_discussion_link  # noqa: E402
 from study_session import run_lines, study_main  # noqa: E402
 from run_stability import read_trajectory, run_program  # noqa: E402
 
@@ -579,7 +579,7 @@ def write_report(path, results, session):
                          f"| {fmt_error(e.get('damping'))} | {fmt_error(e.get('trajectory'))} |")
         lines.append("")
         lines.append(f"![{what}](figures/error_vs_runtime/{figure})\n")
-    write_with_discussion(path, lines, "error-vs-runtime_discussion.md")
+    write_with_discussion_link(path, lines, "error-vs-runtime_discussion.md")
 
 
 def main():

@@ -86,7 +86,7 @@ FIGURES = "doc/figures/locking"
 sys.path.insert(0, str(REPOSITORY / "doc" / "performance"))
 sys.path.insert(0, str(REPOSITORY / "doc" / "stability"))
 sys.path.insert(0, str(REPOSITORY / "doc"))
-from run_benchmarks import write_with_discussion  # noqa: E402
+from run_benchmarks import write_with_discussion_link  # noqa: E402
 from study_session import study_main  # noqa: E402
 from run_stability import (cutbacks_from_log, deformation_of_cells,  # noqa: E402
                            read_trajectory, read_vtu, run_program)
@@ -579,7 +579,7 @@ def write_report(path, results, session):
             lines.append("  ```")
     lines.append("")
 
-    write_with_discussion(path, lines, "locking_discussion.md")
+    write_with_discussion_link(path, lines, "locking_discussion.md")
 
 
 def main():

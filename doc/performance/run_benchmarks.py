@@ -26,6 +26,7 @@ import json
 import math
 import os
 import platform
+import re
 import subprocess
 import sys
 import time
@@ -582,16 +583,18 @@ def write_report(path, results, calculix, run):
                          f"| {per_iteration(s):.1f} |")
         lines.append("")
 
-    write_with_discussion(path, lines, "performance_discussion.md")
+    write_with_discussion_link(path, lines, "performance_discussion.md")
 
 
-def write_with_discussion(path, lines, discussion_name):
-    """Writes the generated lines and then the hand-written discussion,
-    doc/<discussion_name>, if it exists."""
-    discussion = REPOSITORY / "doc" / discussion_name
-    if discussion.exists():
-        lines.append(discussion.read_text())
-    path.write_text("\n".join(lines) + "\n")
+def write_with_discussion_link(path, lines, discussion_name):
+    """Writes the generated lines, with a link below the title to the
+    hand-written discussion of the results, doc/<discussion_name> (which
+    the report links to and does not copy)."""
+    link = (f"The discussion of these results is in "
+            f"[{discussion_name}]({discussion_name}).")
+    text = re.sub(r"^(# .*)\n+", lambda m: f"{m.group(1)}\n\n{link}\n\n",
+                  "\n".join(lines), count=1, flags=re.M)
+    path.write_text(text + "\n")
     print(f"wrote {path}")
 
 

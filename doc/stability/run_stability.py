@@ -540,7 +540,7 @@ def plot_stretch(results, m, path):
 # The machine and the commit are described as in the speed benchmark.
 sys.path.insert(0, str(REPOSITORY / "doc" / "performance"))
 from run_benchmarks import (commit, machine_description,  # noqa: E402
-                            write_with_discussion)
+                            write_with_discussion_link)
 
 
 def fmt(value, digits=2):
@@ -744,7 +744,7 @@ def write_report(path, results, m, session):
             lines.append("  ```")
     lines.append("")
 
-    write_with_discussion(path, lines, "stability_discussion.md")
+    write_with_discussion_link(path, lines, "stability_discussion.md")
 
 
 def main():

@@ -42,7 +42,7 @@ FIGURES = "doc/figures/twisting_column"
 sys.path.insert(0, str(REPOSITORY / "doc" / "performance"))
 sys.path.insert(0, str(REPOSITORY / "doc" / "stability"))
 sys.path.insert(0, str(REPOSITORY / "doc"))
-from run_benchmarks import write_with_discussion  # noqa: E402
+from run_benchmarks import write_with_discussion_link  # noqa: E402
 from study_session import run_lines, study_main  # noqa: E402
 from run_stability import read_trajectory, run_program  # noqa: E402
 
@@ -205,7 +205,7 @@ def write_report(path, results, session):
     lines.append("")
     lines.append("![energy and angular momentum](figures/twisting_column/"
                  "energy_and_angular_momentum.png)\n")
-    write_with_discussion(path, lines, "twisting_column_discussion.md")
+    write_with_discussion_link(path, lines, "twisting_column_discussion.md")
 
 
 def main():
