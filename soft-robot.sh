@@ -87,7 +87,7 @@ case "${1:-}" in
     build Release build-release -DSOFT_ROBOT_BUILD_TESTS=OFF
     /usr/bin/python3 doc/locking/run_locking.py build-release "${@:2}"
     ;;
-  stability|error-vs-runtime|twisting-column)
+  stability|error-vs-runtime|twisting-column|damping)
     packages+=(python3-numpy python3-matplotlib)
     install_missing_packages
     build Release build-release -DSOFT_ROBOT_BUILD_TESTS=OFF

@@ -38,6 +38,15 @@ namespace SoftRobot
     bool matrix        = false; // the tangent matrix
     bool second_matrix = false; // the damping matrix of the state
     bool second_force  = false; // a second force vector
+    // The assembly is that of a state the next time step starts from: the
+    // physics records what it keeps fixed during a step (the viscosity of
+    // KelvinVoigtDamping).
+    bool store_viscosity = false;
+    // $\partial\mathbf v/\partial\mathbf u$ of the time integrator
+    // ($\gamma/(eta\Delta t)$ for the HHT step, zero for the tangent of a
+    // state): the matrix is the derivative of all forces, velocity-dependent
+    // ones included, by the displacement.
+    double velocity_coefficient = 0.;
   };
 
 
@@ -54,6 +63,13 @@ namespace SoftRobot
     std::vector<Tensor<2, dim>>          displacement_gradients;
     std::vector<Tensor<2, dim>>          velocity_gradients;
     Vector<double>                       volume_gradient;
+    // $\partial(\mathbf g\cdot\mathbf v)/\partial\mathbf u$ of the
+    // mean-dilatation damping (see KelvinVoigtDamping).
+    Vector<double> rate_gradient;
+    // The non-symmetric part of a cell matrix, added in full after the
+    // symmetric part has been completed from its lower triangle.
+    FullMatrix<double> nonsymmetric_matrix;
+    bool               has_nonsymmetric_part = false;
   };
 
 
@@ -95,9 +111,14 @@ namespace SoftRobot
           force.reinit(n);
           second_force.reinit(n);
           dof_indices.resize(n);
+          workspace.nonsymmetric_matrix.reinit(n, n);
         }
+      workspace.has_nonsymmetric_part = false;
       if (request.matrix)
-        matrix = 0.;
+        {
+          matrix                        = 0.;
+          workspace.nonsymmetric_matrix = 0.;
+        }
       if (request.second_matrix)
         second_matrix = 0.;
       force = 0.;

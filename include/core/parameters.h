@@ -103,6 +103,7 @@ namespace SoftRobot
       double      density;
       double      mass;
       double      damping_zeta;
+      double      mass_damping;
       double      section;
       std::string silicone;
     };
@@ -145,6 +146,29 @@ namespace SoftRobot
       std::map<std::string, Silicone> silicones;
       // Only the subsections whose `Name` is not empty.
       std::map<unsigned int, Material> by_id;
+
+      static void
+      declare_parameters(ParameterHandler &prm);
+      void
+      parse_parameters(ParameterHandler &prm);
+    };
+
+    // @sect4{Damping}
+    //
+    // The form of the stiffness-proportional damping (each material's
+    // `Damping coefficient`) and the damping by the surrounding air. See
+    // KelvinVoigtDamping and AerodynamicDrag.
+    struct Damping
+    {
+      enum class StiffnessDamping
+      {
+        kelvin_voigt,
+        lagged_matrix
+      };
+      StiffnessDamping          stiffness_damping;
+      std::vector<unsigned int> drag_boundary_ids;
+      double                    drag_coefficient;
+      double                    air_density;
 
       static void
       declare_parameters(ParameterHandler &prm);
@@ -290,6 +314,7 @@ namespace SoftRobot
                            public Geometry,
                            public FiniteElement,
                            public Materials,
+                           public Damping,
                            public Loads,
                            public InitialConditions,
                            public TimeIntegration,

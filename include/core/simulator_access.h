@@ -94,6 +94,26 @@ namespace SoftRobot
     const TrilinosWrappers::SparseMatrix &
     mass_matrix() const;
 
+    // @sect4{The damping forces}
+    //
+    // The damping laws keep something of the state a time step starts from
+    // (the viscosity of the Kelvin-Voigt damping, the matrix of the lagged
+    // form); record_damping_state() records it at the displacement u at
+    // rest. damped_forces() then gives the elastic and damping forces at
+    // (u, v) and, with `with_matrix`, the derivative of their sum by the
+    // displacement at fixed v plus `velocity_coefficient` times its
+    // derivative by the velocity: the tangent of a time step in which v
+    // depends on u with that coefficient.
+    void
+    record_damping_state(const TrilinosWrappers::MPI::Vector &u);
+    const TrilinosWrappers::SparseMatrix &
+    damped_forces(const TrilinosWrappers::MPI::Vector &u,
+                  const TrilinosWrappers::MPI::Vector &v,
+                  const double                         velocity_coefficient,
+                  const bool                           with_matrix,
+                  TrilinosWrappers::MPI::Vector       &internal_force,
+                  TrilinosWrappers::MPI::Vector       &damping_force);
+
     // @sect4{The statistics of the run so far}
     unsigned int
     n_steps() const;

@@ -63,6 +63,7 @@
 #include <output/field_output.h>
 #include <output/tip_region.h>
 #include <output/trajectory_writer.h>
+#include <physics/aerodynamic_drag.h>
 #include <physics/cell_geometry.h>
 #include <physics/hyperelastic_solid.h>
 #include <physics/inertia.h>
@@ -170,14 +171,39 @@ namespace SoftRobot
 
     // @sect4{The assemblies}
     //
-    // The elastic internal force at u and, with the matrix, the tangent
-    // stiffness into system_matrix and (unless `with_damping_matrix` is
-    // false) the damping matrix of the state into next_damping_matrix.
+    // The forces of the state (u, v) that the cell integrals give: the
+    // elastic internal force, and (if `damping_force` is given) the damping
+    // forces of the Kelvin-Voigt stress and the drag; without v (a static
+    // state) the velocity-dependent forces are left out. As `request`
+    // asks, the tangent into system_matrix and the damping matrix of the
+    // state into next_damping_matrix.
+    AssemblyResult
+    assemble_forces(const TrilinosWrappers::MPI::Vector &u,
+                    const TrilinosWrappers::MPI::Vector *v,
+                    const AssemblyRequest               &request,
+                    TrilinosWrappers::MPI::Vector       &internal_force,
+                    TrilinosWrappers::MPI::Vector       *damping_force);
+    // The stiffness of a state alone (no velocity), for the static
+    // equilibrium, the modified Newton method and the tests.
     AssemblyResult
     assemble_internal_force(const TrilinosWrappers::MPI::Vector &u,
                             const bool                           with_matrix,
-                            TrilinosWrappers::MPI::Vector &internal_force,
-                            const bool with_damping_matrix = true);
+                            TrilinosWrappers::MPI::Vector &internal_force);
+    // Everything the next time step needs of the state `current`: its
+    // internal and damping forces, its stiffness (into system_matrix), its
+    // damping matrix (into damping_matrix) and the viscosity of the
+    // Kelvin-Voigt damping.
+    AssemblyResult
+    assemble_state();
+    // The damping forces that are not cell integrals, at velocity v, added
+    // to `force`: the lagged damping matrix's and the mass-proportional
+    // damping's; and their matrices times `factor`, added to `matrix`.
+    void
+    add_global_damping_forces(const TrilinosWrappers::MPI::Vector &v,
+                              TrilinosWrappers::MPI::Vector &force) const;
+    void
+    add_global_damping_matrices(const double                    factor,
+                                TrilinosWrappers::SparseMatrix &matrix) const;
     // Gravity, the tractions and the body force at `time`, times the load
     // factor of the static solve.
     void
@@ -220,6 +246,11 @@ namespace SoftRobot
     // The physics and the global addition.
     CellGeometry<dim>                     cell_geometry;
     std::unique_ptr<HyperelasticSolid<dim>> solid;
+    std::unique_ptr<AerodynamicDrag<dim>>   drag;
+    // Whether any damping acts (stiffness- or mass-proportional, drag), and
+    // whether the stiffness-proportional one is the lagged matrix.
+    bool                                  damped        = false;
+    bool                                  lagged_matrix = false;
     Inertia<dim>                          inertia;
     TractionLoad<dim>                     traction;
     std::shared_ptr<Function<dim>>        body_force;

@@ -65,8 +65,10 @@
 #include <core/parameters.h>
 #include <material/neo_hookean_energy.h>
 #include <physics/cell_geometry.h>
+#include <physics/kelvin_voigt_damping.h>
 
 #include <map>
+#include <memory>
 #include <utility>
 #include <vector>
 
@@ -78,8 +80,12 @@ namespace SoftRobot
   public:
     // The materials of the parameter file, on the cells of `geometry`
     // (which must outlive this object).
+    // With `symmetric_tangent` the matrix is kept symmetric (for CG), and
+    // the non-symmetric parts of the damping's tangent are left out.
     HyperelasticSolid(const Parameters::AllParameters &parameters,
-                      const CellGeometry<dim>         &geometry);
+                      const CellGeometry<dim>         &geometry,
+                      const bool                       symmetric_tangent);
+    ~HyperelasticSolid();
 
     // Whether any material has a damping coefficient.
     bool
@@ -88,9 +94,22 @@ namespace SoftRobot
       return damped;
     }
 
+    // Whether the damping is the Kelvin-Voigt stress (rather than a matrix
+    // the simulator applies to the velocity): then the cell integral needs
+    // the velocity and returns the damping force.
+    bool
+    has_viscous_stress() const
+    {
+      return viscous != nullptr;
+    }
+
     // The integral over the cell `local.cell`, whose displacement values
-    // are `local.input_values[0]`: the internal force, and as requested the
-    // tangent stiffness (`matrix`) and the damping matrix (`second_matrix`).
+    // are `local.input_values[0]` and velocity values (with the viscous
+    // stress) `local.input_values[1]`: the elastic internal force into
+    // `force`, the viscous one into `second_force`, and as requested the
+    // tangent (`matrix`, the derivative of both forces by the displacement,
+    // see AssemblyRequest) and the damping matrix of the state
+    // (`second_matrix`).
     void
     cell_contribution(CellContribution<dim> &local) const;
 
@@ -116,8 +135,16 @@ namespace SoftRobot
     }
 
   private:
+    // Whether the cell integral includes the viscous stress: with the
+    // velocity given and the Kelvin-Voigt damping.
+    bool
+    viscous_cell(const CellContribution<dim> &local) const
+    {
+      return viscous && local.input_values.size() > 1;
+    }
+
     // The cell's displacement gradients at its quadrature points, from
-    // its nodal values.
+    // its nodal values (also used for the velocity gradients).
     void
     displacement_gradients(const unsigned int           cell,
                            const double                *cell_u,
@@ -150,6 +177,7 @@ namespace SoftRobot
     // Per cell: its law and damping coefficient $\zeta$.
     std::vector<const NeoHookeanEnergy<dim> *> cell_law;
     std::vector<double>                        cell_zeta;
+    std::unique_ptr<KelvinVoigtDamping<dim>>   viscous;
   };
 } // namespace SoftRobot
 

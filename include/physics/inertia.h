@@ -50,9 +50,18 @@ namespace SoftRobot
            const AffineConstraints<double> &constraints,
            const MPI_Comm                   mpi_communicator);
 
-    // The matrix and the gravity load of the last reinit().
+    // The matrix and the gravity load of the last reinit(), and the
+    // matrix of the mass-proportional damping, $\int\alpha\rho_0\,\mathbf
+    // N_i\cdot\mathbf N_j\,dV$ with each material's `Mass damping
+    // coefficient` $\alpha$ (assembled only if one is nonzero; it must then
+    // have the sparsity pattern too).
     TrilinosWrappers::SparseMatrix mass;
     TrilinosWrappers::MPI::Vector  gravity_force;
+    TrilinosWrappers::SparseMatrix mass_damping;
+
+    // Whether any material has a mass damping coefficient.
+    static bool
+    has_mass_damping(const Parameters::AllParameters &parameters);
 
     // $\rho_0$ of a material.
     double

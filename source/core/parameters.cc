@@ -219,7 +219,19 @@ namespace SoftRobot
                             "zeta of the stiffness-proportional Rayleigh "
                             "damping C = zeta K, s. A mode of circular "
                             "frequency omega gets the damping ratio "
-                            "xi = zeta omega / 2.");
+                            "xi = zeta omega / 2. Its form is that of "
+                            "Damping/Stiffness-proportional damping.");
+          prm.declare_entry(
+            "Mass damping coefficient",
+            "0",
+            Patterns::Double(0, 1e4),
+            "alpha of the mass-proportional Rayleigh damping force alpha M v, "
+            "1/s: a mode of circular frequency omega gets the damping ratio "
+            "alpha / (2 omega). It is not objective: it also brakes rigid "
+            "translations and rotations of the body (a swinging pendulum "
+            "loses its swing to it), which is why it is off by default; it "
+            "stands for a drag of the surroundings proportional to the "
+            "velocity.");
           prm.declare_entry("Section",
                             "1",
                             Patterns::Double(1e-12),
@@ -341,6 +353,7 @@ namespace SoftRobot
               material.density       = prm.get_double("Density");
               material.mass          = prm.get_double("Mass");
               material.damping_zeta  = prm.get_double("Damping coefficient");
+              material.mass_damping = prm.get_double("Mass damping coefficient");
               material.section       = prm.get_double("Section");
               material.silicone      = prm.get("Silicone");
               if (!material.silicone.empty())
@@ -373,6 +386,64 @@ namespace SoftRobot
             }
           prm.leave_subsection();
         }
+    }
+
+
+
+    // @sect4{Damping}
+    void
+    Damping::declare_parameters(ParameterHandler &prm)
+    {
+      prm.enter_subsection("Damping");
+      prm.declare_entry(
+        "Stiffness-proportional damping",
+        "Kelvin-Voigt",
+        Patterns::Selection("Kelvin-Voigt|lagged matrix"),
+        "The form of the damping of each material's Damping coefficient "
+        "zeta. 'Kelvin-Voigt': a viscous stress zeta C+ : dE/dt driven by the "
+        "rate of the Green-Lagrange strain, with C+ the positive part of the "
+        "material tangent at the state each time step starts from; it "
+        "vanishes for every rigid motion, translations and finite rotations "
+        "alike, and for small motions about an equilibrium it is C = zeta K. "
+        "'lagged matrix': the damping matrix zeta K+ of the state a step "
+        "starts from applied to the velocity at its end; it damps rigid "
+        "rotations by an amount that grows with (Omega dt)^2 (a body that "
+        "swings or spins loses energy it should keep, and the damping "
+        "depends on the time step). Kept to compare with earlier results.");
+      prm.declare_entry(
+        "Drag boundary ids",
+        "",
+        Patterns::List(Patterns::Integer(0)),
+        "Boundaries on which the surrounding air exerts the quadratic drag "
+        "-1/2 rho_air C_d |v.n| (v.n) n per unit deformed area (n the "
+        "current outer normal, v the velocity); empty: none.");
+      prm.declare_entry("Drag coefficient",
+                        "1",
+                        Patterns::Double(0, 100),
+                        "C_d of the drag on the Drag boundary ids.");
+      prm.declare_entry("Air density",
+                        "1.2e-9",
+                        Patterns::Double(0, 1),
+                        "rho_air of the drag, kg/mm^3 (air at 20 C: "
+                        "1.2e-9).");
+      prm.leave_subsection();
+    }
+
+    void
+    Damping::parse_parameters(ParameterHandler &prm)
+    {
+      prm.enter_subsection("Damping");
+      stiffness_damping =
+        (prm.get("Stiffness-proportional damping") == "lagged matrix") ?
+          StiffnessDamping::lagged_matrix :
+          StiffnessDamping::kelvin_voigt;
+      drag_boundary_ids.clear();
+      for (const int id : Utilities::string_to_int(
+             Utilities::split_string_list(prm.get("Drag boundary ids"))))
+        drag_boundary_ids.push_back(id);
+      drag_coefficient = prm.get_double("Drag coefficient");
+      air_density      = prm.get_double("Air density");
+      prm.leave_subsection();
     }
 
 
@@ -766,11 +837,15 @@ namespace SoftRobot
         "decrement, per direction), print a summary and "
         "write tip_spectrum.csv and tip_spectrum_magnitudes.csv "
         "to the output directory.");
-      prm.declare_entry("Spectral analysis skip",
-                        "0",
-                        Patterns::Double(0),
-                        "Seconds at the start of the trajectory that the "
-                        "spectral analysis leaves out (e.g. a transient).");
+      prm.declare_entry(
+        "Spectral analysis skip",
+        "1",
+        Patterns::Double(0),
+        "Seconds at the start of the trajectory that the spectral analysis "
+        "leaves out, as tip-spectrum --skip does: the start-up transient of a "
+        "release, in which the damping takes the energy that the release put "
+        "into stiff modes (in the bellows scenes most of it in the first 0.3 s, "
+        "see doc/damping.md). Records too short for it are not analysed.");
       prm.declare_entry("Progress interval",
                         "10",
                         Patterns::Integer(0),
@@ -812,6 +887,7 @@ namespace SoftRobot
       Geometry::declare_parameters(prm);
       FiniteElement::declare_parameters(prm);
       Materials::declare_parameters(prm);
+      Damping::declare_parameters(prm);
       Loads::declare_parameters(prm);
       InitialConditions::declare_parameters(prm);
       TimeIntegration::declare_parameters(prm);
@@ -827,6 +903,7 @@ namespace SoftRobot
       Geometry::parse_parameters(prm);
       FiniteElement::parse_parameters(prm);
       Materials::parse_parameters(prm);
+      Damping::parse_parameters(prm);
       Loads::parse_parameters(prm);
       InitialConditions::parse_parameters(prm);
       TimeIntegration::parse_parameters(prm);

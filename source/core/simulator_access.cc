@@ -126,9 +126,8 @@ namespace SoftRobot
     return simulator.angular_momentum();
   }
 
-  // The tangent at the current state is the state's stiffness, from which
-  // the next step's matrix may be formed; at another u it is not, and the
-  // damping matrix of the state is left as it is.
+  // The stiffness alone (no damping); the damping matrix of the state is
+  // left as it is, and the next step assembles its own matrix.
   template <int dim>
   const TrilinosWrappers::SparseMatrix &
   SimulatorAccess<dim>::tangent_stiffness_matrix()
@@ -136,7 +135,7 @@ namespace SoftRobot
     TrilinosWrappers::MPI::Vector force(simulator.locally_owned_dofs,
                                         simulator.mpi_communicator);
     simulator.assemble_internal_force(simulator.current.u, true, force);
-    simulator.system_matrix_is_state_stiffness = true;
+    simulator.system_matrix_is_state_stiffness = false;
     return simulator.system_matrix;
   }
 
@@ -147,7 +146,7 @@ namespace SoftRobot
   {
     TrilinosWrappers::MPI::Vector force(simulator.locally_owned_dofs,
                                         simulator.mpi_communicator);
-    simulator.assemble_internal_force(u, true, force, false);
+    simulator.assemble_internal_force(u, true, force);
     simulator.system_matrix_is_state_stiffness = false;
     return simulator.system_matrix;
   }
@@ -166,6 +165,50 @@ namespace SoftRobot
   {
     return simulator.inertia.mass;
   }
+
+  template <int dim>
+  void
+  SimulatorAccess<dim>::record_damping_state(
+    const TrilinosWrappers::MPI::Vector &u)
+  {
+    SoftRobotDynamics<dim> &s = simulator;
+    TrilinosWrappers::MPI::Vector internal(s.locally_owned_dofs,
+                                           s.mpi_communicator);
+    TrilinosWrappers::MPI::Vector damping(internal), rest(internal);
+    AssemblyRequest               request;
+    request.matrix          = true;
+    request.second_matrix   = s.solid->has_damping() || s.drag;
+    request.second_force    = true;
+    request.store_viscosity = true;
+    s.assemble_forces(u, &rest, request, internal, &damping);
+    if (request.second_matrix)
+      s.damping_matrix.copy_from(s.next_damping_matrix);
+    s.system_matrix_is_state_stiffness = false;
+  }
+
+  template <int dim>
+  const TrilinosWrappers::SparseMatrix &
+  SimulatorAccess<dim>::damped_forces(const TrilinosWrappers::MPI::Vector &u,
+                                      const TrilinosWrappers::MPI::Vector &v,
+                                      const double velocity_coefficient,
+                                      const bool   with_matrix,
+                                      TrilinosWrappers::MPI::Vector &internal,
+                                      TrilinosWrappers::MPI::Vector &damping)
+  {
+    SoftRobotDynamics<dim> &s = simulator;
+    AssemblyRequest         request;
+    request.matrix               = with_matrix;
+    request.second_force         = true;
+    request.velocity_coefficient = velocity_coefficient;
+    s.assemble_forces(u, &v, request, internal, &damping);
+    s.add_global_damping_forces(v, damping);
+    if (with_matrix)
+      s.add_global_damping_matrices(velocity_coefficient, s.system_matrix);
+    s.system_matrix_is_state_stiffness = false;
+    return s.system_matrix;
+  }
+
+
 
   template <int dim>
   unsigned int

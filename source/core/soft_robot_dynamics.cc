@@ -265,12 +265,32 @@ namespace SoftRobot
       return parameters.by_id.at(id).section;
     };
     cell_geometry.reinit(*mapping, dof_handler, *cell_quadrature, section);
-    solid = std::make_unique<HyperelasticSolid<dim>>(parameters, cell_geometry);
-    if (solid->has_damping())
+    // CG needs a symmetric matrix: the non-symmetric parts of the damping's
+    // tangent are then left out (see KelvinVoigtDamping).
+    const bool symmetric_tangent =
+      (parameters.linear_solver ==
+       Parameters::LinearSolver::LinearSolverType::cg);
+    solid = std::make_unique<HyperelasticSolid<dim>>(parameters,
+                                                     cell_geometry,
+                                                     symmetric_tangent);
+    if (!parameters.drag_boundary_ids.empty())
+      drag = std::make_unique<AerodynamicDrag<dim>>(parameters,
+                                                    cell_geometry,
+                                                    *mapping,
+                                                    dof_handler,
+                                                    *face_quadrature,
+                                                    symmetric_tangent);
+    lagged_matrix = solid->has_damping() && !solid->has_viscous_stress();
+    damped        = solid->has_damping() || drag ||
+             Inertia<dim>::has_mass_damping(parameters);
+    const bool damping_matrices = solid->has_damping() || drag;
+    if (damping_matrices)
       {
         reinit_matrix(damping_matrix);
         reinit_matrix(next_damping_matrix);
       }
+    if (Inertia<dim>::has_mass_damping(parameters))
+      reinit_matrix(inertia.mass_damping);
     inertia.reinit(parameters,
                    *mapping,
                    dof_handler,
@@ -285,7 +305,7 @@ namespace SoftRobot
       locally_owned_dofs,
       locally_relevant_dofs,
       system_matrix,
-      solid->has_damping() ? &damping_matrix : nullptr,
+      damping_matrices ? &damping_matrix : nullptr,
       current.u,
       mpi_communicator);
     linear_solver.set_near_null_space(rigid_body_modes(*mapping, dof_handler));

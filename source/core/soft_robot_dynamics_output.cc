@@ -231,11 +231,21 @@ namespace SoftRobot
     if (Utilities::MPI::this_mpi_process(mpi_communicator) != 0)
       return;
     const std::string directory = parameters.output_directory + "/";
-    const Analysis::TrajectoryAnalysis analysis =
-      Analysis::analyse_trajectory(Analysis::read_tip_trajectory(
-                                     directory + parameters.trajectory_file),
-                                   Analysis::SpectralOptions(),
-                                   parameters.spectral_skip);
+    Analysis::TrajectoryAnalysis analysis;
+    try
+      {
+        analysis = Analysis::analyse_trajectory(
+          Analysis::read_tip_trajectory(directory + parameters.trajectory_file),
+          Analysis::SpectralOptions(),
+          parameters.spectral_skip);
+      }
+    catch (std::invalid_argument &reason)
+      {
+        pcout << "No spectral analysis of the tip motion: " << reason.what()
+              << " (Output/Spectral analysis skip = "
+              << parameters.spectral_skip << " s)" << std::endl;
+        return;
+      }
     std::ofstream(directory + "tip_spectrum.csv")
       << Analysis::spectral_table_csv(analysis);
     std::ofstream(directory + "tip_spectrum_magnitudes.csv")

@@ -16,34 +16,124 @@
 
 namespace SoftRobot
 {
-  // @sect4{SoftRobotDynamics::assemble_internal_force}
+  // @sect4{SoftRobotDynamics::assemble_forces}
   //
-  // The physics of HyperelasticSolid on every cell, added by the global
-  // assembler.
+  // The physics of every cell -- HyperelasticSolid's, then the drag on the
+  // cell's faces -- added by the global assembler.
+  template <int dim>
+  AssemblyResult
+  SoftRobotDynamics<dim>::assemble_forces(
+    const TrilinosWrappers::MPI::Vector &u,
+    const TrilinosWrappers::MPI::Vector *v,
+    const AssemblyRequest               &request,
+    TrilinosWrappers::MPI::Vector       &internal_force,
+    TrilinosWrappers::MPI::Vector       *damping_force)
+  {
+    TimerOutput::Scope timer_section(computing_timer,
+                                     request.matrix ? "Assemble system" :
+                                                      "Assemble residual");
+    Assert(damping_force != nullptr || !request.second_force,
+           ExcInternalError());
+    Assert(!request.second_matrix || solid->has_damping() || drag,
+           ExcInternalError());
+    typename SystemAssembler<dim>::Targets targets;
+    targets.force         = &internal_force;
+    targets.second_force  = damping_force;
+    targets.matrix        = &system_matrix;
+    targets.second_matrix = &next_damping_matrix;
+    std::vector<const TrilinosWrappers::MPI::Vector *> inputs = {&u};
+    if (v != nullptr)
+      inputs.push_back(v);
+    return assembler->assemble(
+      [this](CellContribution<dim> &local) {
+        solid->cell_contribution(local);
+        if (drag && local.input_values.size() > 1)
+          drag->add_cell_contribution(local);
+      },
+      inputs,
+      request,
+      targets);
+  }
+
+
+
+  // @sect4{SoftRobotDynamics::assemble_internal_force}
   template <int dim>
   AssemblyResult
   SoftRobotDynamics<dim>::assemble_internal_force(
     const TrilinosWrappers::MPI::Vector &u,
     const bool                           with_matrix,
-    TrilinosWrappers::MPI::Vector       &internal_force,
-    const bool                           with_damping_matrix)
+    TrilinosWrappers::MPI::Vector       &internal_force)
   {
-    TimerOutput::Scope timer_section(computing_timer,
-                                     with_matrix ? "Assemble system" :
-                                                   "Assemble residual");
     AssemblyRequest request;
     request.matrix = with_matrix;
-    request.second_matrix =
-      with_matrix && solid->has_damping() && with_damping_matrix;
-    typename SystemAssembler<dim>::Targets targets;
-    targets.force         = &internal_force;
-    targets.matrix        = &system_matrix;
-    targets.second_matrix = &next_damping_matrix;
-    return assembler->assemble(
-      [this](CellContribution<dim> &local) { solid->cell_contribution(local); },
-      {&u},
-      request,
-      targets);
+    return assemble_forces(u, nullptr, request, internal_force, nullptr);
+  }
+
+
+
+  // @sect4{SoftRobotDynamics::assemble_state}
+  //
+  // At the state a time step starts from (and at t = 0): the stiffness,
+  // the damping matrix, and the forces, with the viscosity of the
+  // Kelvin-Voigt damping recorded first, so that the damping force of the
+  // state is that of the viscosity the next step keeps.
+  template <int dim>
+  AssemblyResult
+  SoftRobotDynamics<dim>::assemble_state()
+  {
+    AssemblyRequest request;
+    request.matrix          = true;
+    request.second_matrix   = damped && (solid->has_damping() || drag);
+    request.second_force    = damped;
+    request.store_viscosity = true;
+    const AssemblyResult assembly =
+      assemble_forces(current.u,
+                      damped ? &current.v : nullptr,
+                      request,
+                      current.internal_force,
+                      damped ? &current.damping_force : nullptr);
+    system_matrix_is_state_stiffness = true;
+    if (request.second_matrix)
+      damping_matrix.copy_from(next_damping_matrix);
+    if (!damped)
+      current.damping_force = 0.;
+    else
+      add_global_damping_forces(current.v, current.damping_force);
+    return assembly;
+  }
+
+
+
+  // @sect4{SoftRobotDynamics::add_global_damping_forces}
+  //
+  // The lagged form of the stiffness-proportional damping applies the
+  // damping matrix of the step's first state to the velocity; the
+  // mass-proportional damping is its matrix times the velocity.
+  template <int dim>
+  void
+  SoftRobotDynamics<dim>::add_global_damping_forces(
+    const TrilinosWrappers::MPI::Vector &v,
+    TrilinosWrappers::MPI::Vector       &force) const
+  {
+    if (lagged_matrix)
+      damping_matrix.vmult_add(force, v);
+    if (Inertia<dim>::has_mass_damping(parameters))
+      inertia.mass_damping.vmult_add(force, v);
+  }
+
+
+
+  template <int dim>
+  void
+  SoftRobotDynamics<dim>::add_global_damping_matrices(
+    const double                    factor,
+    TrilinosWrappers::SparseMatrix &matrix) const
+  {
+    if (lagged_matrix)
+      matrix.add(factor, damping_matrix);
+    if (Inertia<dim>::has_mass_damping(parameters))
+      matrix.add(factor, inertia.mass_damping);
   }
 
 
@@ -182,7 +272,7 @@ namespace SoftRobot
           const bool                           with_matrix,
           TrilinosWrappers::MPI::Vector       &r) {
         AssemblyResult assembly =
-          assemble_internal_force(u, with_matrix, internal, false);
+          assemble_internal_force(u, with_matrix, internal);
         system_matrix_is_state_stiffness = false;
         r = internal;
         r -= external;
@@ -241,16 +331,7 @@ namespace SoftRobot
   void
   SoftRobotDynamics<dim>::compute_initial_acceleration()
   {
-    const AssemblyResult assembly =
-      assemble_internal_force(current.u, true, current.internal_force);
-    system_matrix_is_state_stiffness = true;
-    if (solid->has_damping())
-      {
-        damping_matrix.copy_from(next_damping_matrix);
-        damping_matrix.vmult(current.damping_force, current.v);
-      }
-    else
-      current.damping_force = 0.;
+    const AssemblyResult assembly = assemble_state();
     if (assembly.inverted_point_found)
       throw RunAborted("The initial displacement inverts elements (det F = " +
                        std::to_string(assembly.min_jacobian) + ").");
@@ -318,16 +399,21 @@ namespace SoftRobot
   // @f[
   //   \mathbf r = \mathbf M\mathbf a_{n+1}
   //   + (1+\alpha)\left[\mathbf f_\text{int}(\mathbf u_{n+1})
-  //     + \mathbf C\mathbf v_{n+1} - \mathbf f_\text{ext}(t_{n+1})\right]
-  //   - \alpha\left[\mathbf f_\text{int}(\mathbf u_n) + \mathbf C\mathbf v_n
+  //     + \mathbf f_\text{d}(\mathbf u_{n+1}, \mathbf v_{n+1})
+  //     - \mathbf f_\text{ext}(t_{n+1})\right]
+  //   - \alpha\left[\mathbf f_\text{int}(\mathbf u_n)
+  //     + \mathbf f_\text{d}(\mathbf u_n, \mathbf v_n)
   //     - \mathbf f_\text{ext}(t_n)\right],
   // @f]
-  // with the damping matrix $\mathbf C$ of the step. Its derivative, the
-  // effective tangent, is $\mathbf M/(\beta\Delta t^2) + (1+\alpha)(\mathbf K
-  // + c_v\mathbf C)$ with $c_v = \gamma/(\beta\Delta t)$. Newton's method
-  // proper assembles the damping matrix of every iterate (the last one's is
-  // the next step's); the modified one assembles it at the end of the step
-  // only, so a matrix here is only a new tangent.
+  // with the damping forces $\mathbf f_\text{d}$ (the Kelvin-Voigt stress
+  // with the viscosity of the step, or the lagged damping matrix $\mathbf
+  // C_n$ times the velocity, and the mass-proportional damping and the drag
+  // if asked). Its derivative, the effective tangent, is $\mathbf
+  // M/(\beta\Delta t^2) + (1+\alpha)\,d(\mathbf f_\text{int} + \mathbf
+  // f_\text{d})/d\mathbf u_{n+1}$, where $\partial\mathbf
+  // v_{n+1}/\partial\mathbf u_{n+1} = c_v = \gamma/(\beta\Delta t)$; the
+  // cell integrals include their velocity terms with $c_v$ (see
+  // AssemblyRequest), the global damping matrices are added here.
   template <int dim>
   AssemblyResult
   SoftRobotDynamics<dim>::evaluate_residual(
@@ -338,17 +424,20 @@ namespace SoftRobot
   {
     stepper.update_kinematics(
       u_trial, previous.u, previous.v, previous.a, dt, current.v, current.a);
-    const bool every_iteration =
-      (parameters.tangent_update !=
-       Parameters::NonlinearSolver::TangentUpdate::every_step);
-    AssemblyResult assembly = assemble_internal_force(u_trial,
-                                                      with_matrix,
-                                                      current.internal_force,
-                                                      every_iteration);
+    AssemblyRequest request;
+    request.matrix               = with_matrix;
+    request.second_force         = damped;
+    request.velocity_coefficient = stepper.velocity_coefficient(dt);
+    AssemblyResult assembly =
+      assemble_forces(u_trial,
+                      damped ? &current.v : nullptr,
+                      request,
+                      current.internal_force,
+                      damped ? &current.damping_force : nullptr);
     if (with_matrix)
       system_matrix_is_state_stiffness = false;
-    if (solid->has_damping())
-      damping_matrix.vmult(current.damping_force, current.v);
+    if (damped)
+      add_global_damping_forces(current.v, current.damping_force);
     else
       current.damping_force = 0.;
 
@@ -365,9 +454,8 @@ namespace SoftRobot
     if (with_matrix)
       {
         system_matrix *= w;
-        if (solid->has_damping())
-          system_matrix.add(w * stepper.velocity_coefficient(dt),
-                            damping_matrix);
+        add_global_damping_matrices(w * stepper.velocity_coefficient(dt),
+                                    system_matrix);
         system_matrix.add(stepper.acceleration_coefficient(dt), inertia.mass);
       }
     return assembly;
@@ -404,7 +492,7 @@ namespace SoftRobot
       {
         TrilinosWrappers::MPI::Vector force(locally_owned_dofs,
                                             mpi_communicator);
-        assemble_internal_force(previous.u, true, force, false);
+        assemble_internal_force(previous.u, true, force);
       }
     StiffnessHistory &history = stiffness_history;
     if (parameters.tangent_extrapolation)
@@ -425,10 +513,13 @@ namespace SoftRobot
             system_matrix.add(-theta, *history.older);
           }
       }
-    const double w = stepper.new_force_weight();
+    const double w   = stepper.new_force_weight();
+    const double c_v = stepper.velocity_coefficient(dt);
     system_matrix *= w;
-    if (solid->has_damping())
-      system_matrix.add(w * stepper.velocity_coefficient(dt), damping_matrix);
+    if (solid->has_damping() || drag)
+      system_matrix.add(w * c_v, damping_matrix);
+    if (Inertia<dim>::has_mass_damping(parameters))
+      system_matrix.add(w * c_v, inertia.mass_damping);
     system_matrix.add(stepper.acceleration_coefficient(dt), inertia.mass);
     system_matrix_is_state_stiffness = false;
     linear_solver.prepare(system_matrix);
@@ -531,13 +622,13 @@ namespace SoftRobot
   //
   // One step of the time loop with automatic step-size control (see
   // TimeStepController): a failed step is repeated with half the time
-  // step. The damping forces of the old state are computed with this
-  // step's damping matrix, so that the damping is linear within the step.
-  // After the step, the damping matrix of the converged state becomes the
-  // next step's. Newton's method proper assembled it in its last iteration;
-  // the modified one assembled residuals only, and the stiffness and
-  // damping of the new state are assembled here, once per step (the
-  // stiffness is the next step's matrix).
+  // step. After the step, the new state is assembled once (assemble_state()):
+  // its stiffness is the next step's matrix in the modified Newton method,
+  // its damping matrix and viscosity are the next step's, and its damping
+  // force with them is the next step's force of the old state, so that the
+  // damping is the same law at both ends of every step. (Newton's method
+  // proper, without damping, needs none of it: its last iteration assembled
+  // the new state's forces.)
   template <int dim>
   bool
   SoftRobotDynamics<dim>::advance_one_step()
@@ -546,8 +637,6 @@ namespace SoftRobot
       return false;
 
     previous = current;
-    if (solid->has_damping())
-      damping_matrix.vmult(previous.damping_force, previous.v);
     while (true)
       {
         const double dt = step_controller.next_step(previous.time);
@@ -563,14 +652,10 @@ namespace SoftRobot
           }
       }
     ++counters.steps;
-    if (parameters.tangent_update ==
-        Parameters::NonlinearSolver::TangentUpdate::every_step)
-      {
-        assemble_internal_force(current.u, true, current.internal_force);
-        system_matrix_is_state_stiffness = true;
-      }
-    if (solid->has_damping())
-      damping_matrix.copy_from(next_damping_matrix);
+    if (damped ||
+        parameters.tangent_update ==
+          Parameters::NonlinearSolver::TangentUpdate::every_step)
+      assemble_state();
     step_controller.record_success(current.time);
     return true;
   }
@@ -579,11 +664,22 @@ namespace SoftRobot
 
   // The explicit instantiations of this file's member functions.
 #define SOFT_ROBOT_INSTANTIATE(dim)                                           \
+  template AssemblyResult SoftRobotDynamics<dim>::assemble_forces(           \
+    const TrilinosWrappers::MPI::Vector &,                                    \
+    const TrilinosWrappers::MPI::Vector *,                                    \
+    const AssemblyRequest &,                                                  \
+    TrilinosWrappers::MPI::Vector &,                                          \
+    TrilinosWrappers::MPI::Vector *);                                         \
   template AssemblyResult SoftRobotDynamics<dim>::assemble_internal_force(   \
     const TrilinosWrappers::MPI::Vector &,                                    \
     const bool,                                                               \
-    TrilinosWrappers::MPI::Vector &,                                          \
-    const bool);                                                              \
+    TrilinosWrappers::MPI::Vector &);                                         \
+  template AssemblyResult SoftRobotDynamics<dim>::assemble_state();          \
+  template void SoftRobotDynamics<dim>::add_global_damping_forces(            \
+    const TrilinosWrappers::MPI::Vector &, TrilinosWrappers::MPI::Vector &)   \
+    const;                                                                    \
+  template void SoftRobotDynamics<dim>::add_global_damping_matrices(          \
+    const double, TrilinosWrappers::SparseMatrix &) const;                    \
   template void SoftRobotDynamics<dim>::assemble_external_force(              \
     const double, const double, TrilinosWrappers::MPI::Vector &) const;       \
   template NewtonSolver::Problem SoftRobotDynamics<dim>::newton_problem(     \

@@ -8,10 +8,17 @@
 namespace SoftRobot
 {
   // @sect4{HyperelasticSolid::HyperelasticSolid}
+  //
+  // The stiffness-proportional damping is either a Kelvin-Voigt stress
+  // (KelvinVoigtDamping, the default) or the damping matrix of a state that
+  // the simulator applies to the velocity (the lagged form kept for
+  // comparison); with the first, the matrix of a state is the same, and the
+  // force is the stress's.
   template <int dim>
   HyperelasticSolid<dim>::HyperelasticSolid(
     const Parameters::AllParameters &parameters,
-    const CellGeometry<dim>         &geometry)
+    const CellGeometry<dim>         &geometry,
+    const bool                       symmetric_tangent)
     : geometry(geometry)
     , mean_dilatation(
         (dim == 3) &&
@@ -30,7 +37,17 @@ namespace SoftRobot
         cell_law.push_back(&laws.at(id));
         cell_zeta.push_back(parameters.by_id.at(id).damping_zeta);
       }
+    if (damped && parameters.stiffness_damping ==
+                    Parameters::Damping::StiffnessDamping::kelvin_voigt)
+      viscous = std::make_unique<KelvinVoigtDamping<dim>>(geometry,
+                                                          cell_zeta,
+                                                          symmetric_tangent);
   }
+
+
+
+  template <int dim>
+  HyperelasticSolid<dim>::~HyperelasticSolid() = default;
 
 
 
@@ -93,7 +110,7 @@ namespace SoftRobot
         result.volumetric_stiffness = law.volumetric_stiffness(t);
         local.strain_energy += law.volumetric_energy(t) * result.volume;
       }
-    if (local.request.matrix)
+    if (local.request.matrix || viscous_cell(local))
       local.workspace.volume_gradient.reinit(geometry.dofs_per_cell);
     return result;
   }
@@ -146,7 +163,7 @@ namespace SoftRobot
       law.evaluate_stress(H, response);
     local.strain_energy += response.energy * JxW;
 
-    if (mean_dilatation && with_matrix)
+    if (mean_dilatation && (with_matrix || viscous_cell(local)))
       {
         const Tensor<2, dim> cofactor = J * transpose(invert(F));
         for (unsigned int i = 0; i < n; ++i)
@@ -162,11 +179,21 @@ namespace SoftRobot
         if (with_matrix)
           delta_E[i] = symmetrize(outer_product(f_c, grad_phi[i]));
       }
+    if (viscous_cell(local))
+      {
+        typename KelvinVoigtDamping<dim>::PointKinematics point;
+        point.q                = q;
+        point.F                = &F;
+        point.L                = &local.workspace.velocity_gradients[q];
+        point.delta_E          = with_matrix ? &delta_E : nullptr;
+        point.material_tangent = with_matrix ? &response.material_tangent : nullptr;
+        viscous->add_point_contribution(point, local);
+      }
     if (!with_matrix)
       return;
 
-    const double            zeta   = cell_zeta[cell];
-    const bool              damped = local.request.second_matrix && zeta > 0.;
+    const double zeta   = cell_zeta[cell];
+    const bool   damped = !viscous && local.request.second_matrix && zeta > 0.;
     SymmetricTensor<4, dim> damping_tangent;
     if (damped)
       damping_tangent = positive_semidefinite_part(response.material_tangent);
@@ -210,12 +237,23 @@ namespace SoftRobot
     local.workspace.delta_E.resize(n);
     std::vector<Tensor<2, dim>> &H = local.workspace.displacement_gradients;
     displacement_gradients(cell, local.input_values[0], H);
+    if (viscous_cell(local))
+      displacement_gradients(cell,
+                             local.input_values[1],
+                             local.workspace.velocity_gradients);
+    const bool rate_gradient = mean_dilatation && viscous_cell(local) &&
+                               local.request.matrix;
+    local.workspace.rate_gradient.reinit(rate_gradient ? n : 0);
 
     const CellPressure    pressure = cell_pressure(cell, H, local);
     MaterialResponse<dim> response;
     for (unsigned int q = 0; q < geometry.n_q_points; ++q)
       add_point_contribution(q, H[q], pressure, response, local);
 
+    if (mean_dilatation && viscous_cell(local) && !local.inverted)
+      viscous->add_volumetric_contribution(pressure.volume,
+                                           pressure.volumetric_stiffness,
+                                           local);
     if (!local.request.matrix)
       return;
     if (mean_dilatation && !local.inverted)
@@ -224,7 +262,8 @@ namespace SoftRobot
         const double          factor = pressure.volumetric_stiffness /
                                        pressure.volume;
         const double          zeta   = cell_zeta[cell];
-        const bool damped = local.request.second_matrix && zeta > 0.;
+        const bool damped =
+          !viscous && local.request.second_matrix && zeta > 0.;
         for (unsigned int i = 0; i < n; ++i)
           for (unsigned int j = 0; j <= i; ++j)
             {
@@ -239,6 +278,8 @@ namespace SoftRobot
           local.matrix(i, j)        = local.matrix(j, i);
           local.second_matrix(i, j) = local.second_matrix(j, i);
         }
+    if (local.workspace.has_nonsymmetric_part)
+      local.matrix.add(1., local.workspace.nonsymmetric_matrix);
   }
 
 

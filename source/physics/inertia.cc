@@ -95,7 +95,10 @@ namespace SoftRobot
       gravity[d] = parameters.gravity[d];
 
     gravity_force.reinit(dof_handler.locally_owned_dofs(), mpi_communicator);
-    mass = 0.;
+    mass                  = 0.;
+    const bool mass_damped = has_mass_damping(parameters);
+    if (mass_damped)
+      mass_damping = 0.;
     const unsigned int nodes_per_cell = fe.base_element(0).n_dofs_per_cell();
     const std::vector<Point<dim>> &unit_nodes =
       fe.base_element(0).get_unit_support_points();
@@ -132,9 +135,32 @@ namespace SoftRobot
           cell->get_dof_indices(dof_indices);
           constraints.distribute_local_to_global(
             cell_matrix, cell_gravity, dof_indices, mass, gravity_force);
+          const double alpha =
+            parameters.by_id.at(cell->material_id()).mass_damping;
+          if (mass_damped && alpha > 0.)
+            {
+              cell_matrix *= alpha;
+              constraints.distribute_local_to_global(cell_matrix,
+                                                     dof_indices,
+                                                     mass_damping);
+            }
         }
     mass.compress(VectorOperation::add);
+    if (mass_damped)
+      mass_damping.compress(VectorOperation::add);
     gravity_force.compress(VectorOperation::add);
+  }
+
+
+
+  template <int dim>
+  bool
+  Inertia<dim>::has_mass_damping(const Parameters::AllParameters &parameters)
+  {
+    for (const auto &[id, material] : parameters.by_id)
+      if (material.mass_damping > 0.)
+        return true;
+    return false;
   }
 
 

@@ -1,0 +1,188 @@
+// @sect3{Objective stiffness-proportional damping: a Kelvin-Voigt solid}
+//
+// The damping of the reference study is stiffness-proportional, $\mathbf C
+// = \zeta\mathbf K$, which gives a mode of angular frequency $\omega$ the
+// damping ratio $\xi = \zeta\omega/2$. For a body that moves far, "the
+// stiffness" has to be made precise, and how it is made precise decides
+// whether the damping leaves rigid motions alone. A swinging actuator is
+// mostly a rigid rotation with a little bending; its damping must come from
+// the bending only. A damping *matrix* built at one configuration and
+// applied to the velocity at another does not do that: its null space holds
+// the rigid rotations of the configuration it was built at, not those of the
+// body now, and every rotation is damped by an amount that grows with
+// $\Omega^2\Delta t$ (a free cube spinning at 10 rad/s came to rest within
+// one revolution). This class replaces the matrix by a stress.
+//
+// @sect4{The viscous stress}
+//
+// The body is a Kelvin-Voigt solid: besides the elastic stress it carries a
+// viscous second Piola-Kirchhoff stress driven by the rate of the
+// Green-Lagrange strain,
+// @f[
+//   \mathbf S_v = \mathcal D : \dot{\mathbf E},\qquad
+//   \dot{\mathbf E} = \mathrm{sym}(\mathbf F^T\dot{\mathbf F})
+//   = \mathrm{sym}(\mathbf F^T\mathbf L_0),\qquad
+//   \mathbf L_0 = \nabla_0\mathbf v,
+// @f]
+// with the viscosity $\mathcal D = \zeta\,\mathcal C^+$, the damping
+// coefficient times the positive semi-definite part of the material tangent
+// $\mathcal C = \partial^2\Psi/\partial\mathbf E^2$ that Sacado computes
+// for the elastic energy (see positive_semidefinite_part()). Its nodal
+// forces are those of any second Piola-Kirchhoff stress,
+// @f[
+//   f^v_i = \int_{\Omega_0}\delta\mathbf E_i : \mathbf S_v\,dV,\qquad
+//   \delta\mathbf E_i = \mathrm{sym}(\mathbf F^T\nabla_0\mathbf N_i).
+// @f]
+// Three properties follow.
+// - *Objectivity.* For any rigid velocity of the current configuration,
+//   $\mathbf v = \mathbf W\mathbf x + \mathbf c$ with $\mathbf W$ skew,
+//   $\mathbf L_0 = \mathbf W\mathbf F$ and $\dot{\mathbf E} =
+//   \mathrm{sym}(\mathbf F^T\mathbf W\mathbf F) = 0$: the force vanishes
+//   exactly, for translations and finite rotations alike, at every state
+//   the time integrator evaluates it at.
+// - *Dissipation.* The power of the force is $\mathbf v\cdot\mathbf f^v =
+//   \int\dot{\mathbf E}:\mathcal D:\dot{\mathbf E}\,dV \ge 0$.
+// - *Small motions.* About an equilibrium $\mathbf u_e$ the force is, to
+//   first order in the motion, $\mathbf C(\mathbf u_e)\mathbf v$ with
+//   $C_{ij} = \zeta\int\delta\mathbf E_i:\mathcal C^+:\delta\mathbf E_j$,
+//   the material part of the stiffness times $\zeta$: a mode gets $\xi =
+//   \zeta\omega/2$ as before.
+//
+// The viscosity of a time step is that of the state the step starts from,
+// $\mathcal D_n = \zeta\,\mathcal C^+(\mathbf E_n)$, kept per quadrature
+// point for the whole step; it is recorded when the state is assembled at
+// the end of the previous step (AssemblyRequest::store_viscosity). The
+// force itself is evaluated at both states of the HHT equation, with the
+// deformation and velocity of each, so the damping is objective at both;
+// only the viscosity, which is a material property and changes little in a
+// step, lags. Keeping it fixed within the step makes the force bilinear in
+// $(\mathbf F, \mathbf L_0)$ for given $\mathcal D$, so that its tangent is
+// exact in closed form (below), and it keeps the eigenvalue decomposition
+// behind $\mathcal C^+$, which has no useful derivative where an eigenvalue
+// changes sign, out of Newton's method.
+//
+// @sect4{The tangent}
+//
+// With Newmark's $\partial\mathbf v_{n+1}/\partial\mathbf u_{n+1} = c_v =
+// \gamma/(\beta\Delta t)$, the derivative of the force by the nodal
+// displacement $u_j$ ($\mathbf N_j = \varphi_j\mathbf e_{c_j}$) is
+// @f[
+//   \frac{\partial f^v_i}{\partial u_j} = \int\delta\mathbf E_i:\mathcal D:
+//   \left(c_v\,\delta\mathbf E_j + \mathrm{sym}(\mathbf l_{c_j}\otimes
+//   \nabla_0\varphi_j)\right) + \delta_{c_ic_j}\nabla_0\varphi_i\cdot
+//   \mathbf S_v\nabla_0\varphi_j\;dV,
+// @f]
+// with $\mathbf l_c$ the row $c$ of $\mathbf L_0$. The first term is $c_v$
+// times the damping matrix of the current configuration; the last is the
+// geometric stiffness of the viscous stress. The middle term is not
+// symmetric; it is of the order of the strain rate times the step relative
+// to the first and is left out when the linear solver needs a symmetric
+// matrix (CG), which only makes Newton's method slightly inexact.
+//
+// @sect4{The mean-dilatation formulation}
+//
+// There the volumetric energy acts on each cell's mean volume ratio
+// $\Theta_e = V_e/V_{0,e}$, and so does the volumetric viscosity: the
+// cell's viscous pressure is $p_v = \kappa_v\dot\Theta_e$ with
+// $\dot\Theta_e = V_{0,e}^{-1}\mathbf g\cdot\mathbf v$, $\mathbf g =
+// \partial V_e/\partial\mathbf u$ (which vanishes for rigid motions as
+// $\dot J = J\,\mathrm{tr}(\mathbf F^{-1}\mathbf L_0)$ does), and
+// $\kappa_v = \zeta\,U''(\Theta_e)$ at the step's first state. Its force is
+// $p_v\mathbf g$, its derivatives $\kappa_v V_{0,e}^{-1}\,c_v\,\mathbf
+// g\mathbf g^T$ (the rank-one term of the damping matrix), $p_v\,\partial
+// \mathbf g/\partial\mathbf u$ (symmetric) and $\kappa_v V_{0,e}^{-1}\,
+// \mathbf g\,(\partial(\mathbf g\cdot\mathbf v)/\partial\mathbf u)^T$ (not
+// symmetric), with
+// @f[
+//   \frac{\partial^2 J}{\partial F_{aA}\,\partial F_{bB}} =
+//   \varepsilon_{abk}\varepsilon_{ABK}F_{kK},\qquad
+//   \frac{\partial(\mathrm{cof}\,\mathbf F:\mathbf L_0)}{\partial\mathbf F}
+//   = J\left(\mathrm{tr}(\mathbf F^{-1}\mathbf L_0)\,\mathbf F^{-T} -
+//   (\mathbf F^{-1}\mathbf L_0\mathbf F^{-1})^T\right).
+// @f]
+//
+// Implemented in source/physics/kelvin_voigt_damping.cc; HyperelasticSolid
+// calls it at each quadrature point and once per cell.
+
+#ifndef soft_robot_physics_kelvin_voigt_damping_h
+#define soft_robot_physics_kelvin_voigt_damping_h
+
+#include <assembly/cell_contribution.h>
+#include <deal.II/base/symmetric_tensor.h>
+#include <deal.II/base/tensor.h>
+#include <physics/cell_geometry.h>
+
+#include <vector>
+
+namespace SoftRobot
+{
+  using namespace dealii;
+
+  template <int dim>
+  class KelvinVoigtDamping
+  {
+  public:
+    // The damping coefficient $\zeta$ of each cell of `geometry` (which
+    // must outlive this object). With `symmetric_tangent` the non-symmetric
+    // parts of the tangent are left out.
+    KelvinVoigtDamping(const CellGeometry<dim>   &geometry,
+                       const std::vector<double> &cell_zeta,
+                       const bool                 symmetric_tangent);
+
+    // What the point contribution needs of the kinematics at a quadrature
+    // point: the deformation gradient, the velocity gradient, and with a
+    // matrix the strain variations $\delta\mathbf E_i$ and the material
+    // tangent (from which the viscosity is recorded).
+    struct PointKinematics
+    {
+      unsigned int                          q;
+      const Tensor<2, dim>                 *F;
+      const Tensor<2, dim>                 *L;
+      const std::vector<SymmetricTensor<2, dim>> *delta_E;
+      const SymmetricTensor<4, dim>        *material_tangent;
+    };
+
+    // The viscous force of point q into `local.second_force`; with a matrix
+    // its tangent into `local.matrix` (lower triangle of the symmetric
+    // part) and `local.workspace.nonsymmetric_matrix` (the rest, full), and
+    // the damping matrix into `local.second_matrix` (lower triangle). With
+    // `local.request.store_viscosity` the viscosity of the point is first
+    // recorded from the material tangent.
+    void
+    add_point_contribution(const PointKinematics &point,
+                           CellContribution<dim> &local) const;
+
+    // The volumetric viscous force of the mean-dilatation formulation of
+    // the cell, with the cell's reference volume, volume derivative
+    // $\mathbf g$ (`local.workspace.volume_gradient`), $\partial(\mathbf g
+    // \cdot\mathbf v)/\partial\mathbf u$ (`local.workspace.rate_gradient`)
+    // and the volume Hessian times $p_v$ added through
+    // add_volume_hessian(). `volumetric_stiffness` is $U''(\Theta_e)$ of
+    // the current state, recorded with the viscosity.
+    void
+    add_volumetric_contribution(const double           reference_volume,
+                                const double           volumetric_stiffness,
+                                CellContribution<dim> &local) const;
+
+    // The viscous pressure $p_v = \kappa_v\,\mathbf g\cdot\mathbf v/V_{0,e}$
+    // of the cell (zero for cells without damping).
+    double
+    viscous_pressure(const unsigned int     cell,
+                     const double           reference_volume,
+                     const Vector<double>  &volume_gradient,
+                     const double          *cell_v) const;
+
+  private:
+    const CellGeometry<dim> &geometry;
+    const std::vector<double> cell_zeta;
+    const bool                symmetric_tangent;
+    // The positive part of the material tangent at the step's first state,
+    // per cell and point, [cell][q], and $U''$ per cell; written only in the
+    // assemblies of a state, where each cell's entries are written by the
+    // thread that integrates that cell.
+    mutable std::vector<SymmetricTensor<4, dim>> viscosity;
+    mutable std::vector<double>                  volumetric_viscosity;
+  };
+} // namespace SoftRobot
+
+#endif
