@@ -11,7 +11,9 @@
 // the computed value must agree to round-off, with both degrees, on
 // distorted tetrahedra and on undistorted hexahedra. (On distorted
 // hexahedra the Jacobian of the trilinear map varies and the mass
-// quadrature is no longer exact: the error there was 1e-5.)
+// quadrature is no longer exact: the error there was 1e-5.) The test is
+// typed on 2D and 3D only: the 1D column cannot rotate, and its angular
+// momentum is zero by construction, so a 1D case would compare 0 with 0.
 
 #include "solver_test_tools.h"
 
@@ -26,7 +28,7 @@ template <typename T>
 class AngularMomentumTest : public ::testing::Test
 {
 };
-TYPED_TEST_SUITE(AngularMomentumTest, Dimensions);
+TYPED_TEST_SUITE(AngularMomentumTest, Dimensions2And3);
 
 TYPED_TEST(AngularMomentumTest, RigidRotationOfABox)
 {
@@ -35,20 +37,16 @@ TYPED_TEST(AngularMomentumTest, RigidRotationOfABox)
   const double  omega[3] = {30., -20., 50.};
   // v = omega x (X - c), c = (1, 1, 1); in 2D only omega_z.
   const std::string velocity =
-    dim == 3 ? "-20*(z-1) - 50*(y-1); 50*(x-1) - 30*(z-1); 30*(y-1) + 20*(x-1)" :
-    dim == 2 ? "-50*(y-1); 50*(x-1)" :
-               "0";
+    dim == 3 ? "-20*(z-1) - 50*(y-1); 50*(x-1) - 30*(z-1); 30*(y-1) + 20*(x-1)"
+             : "-50*(y-1); 50*(x-1)";
   for (const bool simplices : {false, true})
     for (const unsigned int degree : {1u, 2u})
       {
-        if (simplices && dim == 1)
-          continue;
         std::ostringstream sections;
         sections
           << "subsection Geometry\n  set Generator = subdivided_hyper_rectangle\n"
           << "  set Generator arguments = " << box_arguments(dim, 3, 3, a, a)
-          << "\n  set Random distortion = " << (simplices ? 0.2 : 0.)
-          << "\n"
+          << "\n  set Random distortion = " << (simplices ? 0.2 : 0.) << "\n"
           << "  set Convert to simplices = " << (simplices ? "true" : "false")
           << "\nend\n"
           << "subsection Finite element\n  set Polynomial degree = " << degree
@@ -70,11 +68,12 @@ TYPED_TEST(AngularMomentumTest, RigidRotationOfABox)
         if (dim == 3)
           for (unsigned int d = 0; d < 3; ++d)
             exact[d] = rho * std::pow(a, 5) / 6. * omega[d];
-        else if (dim == 2)
+        else
           exact[2] = rho * thickness * std::pow(a, 4) / 6. * omega[2];
         std::cout << dim << "D, " << (simplices ? "simplices" : "hypercubes")
                   << ", p = " << degree << ": L = " << L << ", exact " << exact
                   << std::endl;
-        EXPECT_LE((L - exact).norm(), 1e-12 * std::max(exact.norm(), 1e-12));
+        EXPECT_GT(exact.norm(), 0.);
+        EXPECT_LE((L - exact).norm(), 1e-12 * exact.norm());
       }
 }

@@ -16,6 +16,8 @@
 // beside the project), not the design parameters of bellows.geo, so that the
 // test checks the geometry rather than repeating it.
 
+// Not typed on the dimension: the actuator's gmsh meshes are 3D.
+
 #include <array>
 #include <cmath>
 #include <cstdlib>

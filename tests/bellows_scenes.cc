@@ -12,6 +12,8 @@
 // and that the Silicone library rejects a name it does not have, with a
 // message naming the entry and the names it has.
 
+// Not typed on the dimension: parameter files are read, nothing is run.
+
 #include <core/parameters.h>
 #include <deal.II/base/numbers.h>
 #include <gtest/gtest.h>

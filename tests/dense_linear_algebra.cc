@@ -12,6 +12,8 @@
 // The tolerances are multiples of the machine epsilon times the condition
 // number of the problem, as explained next to each.
 
+// Not typed on the dimension: the analysis library (no deal.II) sees no mesh.
+
 #include <analysis/dense_linear_algebra.h>
 #include <cmath>
 #include <gtest/gtest.h>

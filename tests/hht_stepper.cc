@@ -73,6 +73,8 @@
 // 10^{-14}$, which has to be compared with $1-|\lambda_1|\approx
 // d_3\Omega^4$, only $6\cdot 10^{-11}$ for $\alpha = -0.05$.
 
+// Not typed on the dimension: the model problem is a scalar oscillator.
+
 #include <algorithm>
 #include <array>
 #include <cmath>

@@ -17,6 +17,8 @@
 // without the spectral peak search, from starting points that are
 // deliberately off.
 
+// Not typed on the dimension: the fit is of one signal of time.
+
 #include <analysis/modal_fit.h>
 #include <cmath>
 #include <gtest/gtest.h>

@@ -26,6 +26,8 @@
 // TrilinosWrappers vectors and a TrilinosWrappers::SparseMatrix for the
 // tangent, which the linear solve factorizes (densely, with LAPACK).
 
+// Not typed on the dimension: the systems here are algebraic, with no mesh.
+
 #include <cmath>
 #include <core/exceptions.h>
 #include <deal.II/base/conditional_ostream.h>

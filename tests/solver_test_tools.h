@@ -48,6 +48,12 @@ namespace SoftRobot::Testing
                                       std::integral_constant<int, 2>,
                                       std::integral_constant<int, 3>>;
 
+  // The dimensions in which a body has directions across its axis, and
+  // rotates: for the physics that the 1D column does not have (lateral
+  // inertia, angular momentum).
+  using Dimensions2And3 = ::testing::Types<std::integral_constant<int, 2>,
+                                           std::integral_constant<int, 3>>;
+
   // The parameter text of a small body: everything the tests do not set
   // explicitly has the program's default. `sections` is appended verbatim.
   inline std::string

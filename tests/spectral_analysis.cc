@@ -22,6 +22,8 @@
 // - the half-power damping ratio carries the truncation bias of
 //   truncated_decay_half_power_width(), up to the same leakage.
 
+// Not typed on the dimension: signals of time (of 1 to 3 components).
+
 #include <algorithm>
 #include <analysis/directions.h>
 #include <analysis/spectral_analysis.h>

@@ -7,6 +7,8 @@
 // decrement must be $\delta$ to round-off; the turning points of a sampled
 // cosine must lie at its extrema.
 
+// Not typed on the dimension: the decrement is of one signal of time.
+
 #include <analysis/time_domain.h>
 #include <cmath>
 #include <gtest/gtest.h>

@@ -8,6 +8,8 @@
 // at multiples of the doubled step, and the two limits that abort the run,
 // with their messages.
 
+// Not typed on the dimension: the controller sees times and step sizes only.
+
 #include <cmath>
 #include <core/exceptions.h>
 #include <deal.II/base/conditional_ostream.h>

@@ -200,6 +200,7 @@ TYPED_TEST(VolumetricFormulationTest, ReducedModelsRejectMeanDilatation)
 // The volume ratio of a linear tetrahedron is constant, so its mean is the
 // pointwise value and the two formulations must give the same energy and
 // force up to round-off.
+// 3D only: the mean-dilatation formulation exists in 3D only.
 TEST(MeanDilatation, EqualsDisplacementFormulationOnLinearTetrahedra)
 {
   std::vector<double>                        energies;
@@ -236,6 +237,7 @@ TEST(MeanDilatation, EqualsDisplacementFormulationOnLinearTetrahedra)
 // above the mean-dilatation result); the mean-dilatation formulation must
 // stay within 1 % of the beam ratio, and closer than the displacement
 // formulation.
+// 3D only: the mean-dilatation formulation exists in 3D only.
 TEST(MeanDilatation, CuresLockingInBending)
 {
   const double mu = 10.;

@@ -61,6 +61,17 @@ namespace SoftRobot
     const AffineConstraints<double> &
     get_constraints() const;
 
+    // @sect4{The physics of the cells}
+    //
+    // The reference geometry of the locally owned cells and the materials
+    // on them, for tests that add the cells' contributions with assemblers
+    // of their own (tests/system_assembler.cc compares the two global
+    // additions on them).
+    const CellGeometry<dim> &
+    get_cell_geometry() const;
+    const HyperelasticSolid<dim> &
+    get_solid() const;
+
     // @sect4{The state}
     double
     time() const;

@@ -77,6 +77,22 @@ namespace SoftRobot
   }
 
   template <int dim>
+  const CellGeometry<dim> &
+  SimulatorAccess<dim>::get_cell_geometry() const
+  {
+    return simulator.cell_geometry;
+  }
+
+  template <int dim>
+  const HyperelasticSolid<dim> &
+  SimulatorAccess<dim>::get_solid() const
+  {
+    Assert(simulator.solid != nullptr,
+           ExcMessage("The solid exists after setup_system()."));
+    return *simulator.solid;
+  }
+
+  template <int dim>
   double
   SimulatorAccess<dim>::time() const
   {
