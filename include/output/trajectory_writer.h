@@ -1,0 +1,49 @@
+// @sect3{The tip trajectory file}
+//
+// One row per time step in a CSV file: the time series that the spectral
+// analysis reads (tip-spectrum, or Output/Spectral analysis at the end of a
+// run) and that doc/plot_tip_trajectory.py plots. Lines starting with '#'
+// are comments; the first other line names the columns. Only MPI process 0
+// writes; every row is flushed at once, so that a run that is interrupted
+// leaves whole rows.
+//
+// Implemented in source/output/trajectory_writer.cc.
+
+#ifndef soft_robot_output_trajectory_writer_h
+#define soft_robot_output_trajectory_writer_h
+
+#include <deal.II/base/mpi.h>
+
+#include <fstream>
+#include <string>
+#include <vector>
+
+namespace SoftRobot
+{
+  class TrajectoryWriter
+  {
+  public:
+    explicit TrajectoryWriter(const MPI_Comm mpi_communicator);
+
+    // Creates `file_name` with the comment lines (each without its '#')
+    // and the header of the columns.
+    void
+    open(const std::string              &file_name,
+         const std::vector<std::string> &comments,
+         const std::vector<std::string> &columns);
+
+    // One row, in the order of the columns, with ten significant digits.
+    void
+    write_row(const std::vector<double> &values);
+
+    void
+    close();
+
+  private:
+    const bool    root;
+    std::string   name;
+    std::ofstream file;
+  };
+} // namespace SoftRobot
+
+#endif
