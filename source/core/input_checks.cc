@@ -79,7 +79,11 @@ namespace SoftRobot
         const std::string       text = Parameters::one_line(info.str());
         static const std::regex said("The parser said: (.*)");
         std::smatch             match;
-        return std::regex_search(text, match, said) ? match[1].str() : text;
+        std::string reason =
+          std::regex_search(text, match, said) ? match[1].str() : text;
+        while (!reason.empty() && reason.back() == '.')
+          reason.pop_back();
+        return reason;
       }
 
       bool

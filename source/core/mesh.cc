@@ -59,6 +59,8 @@ namespace SoftRobot
           std::ostringstream reason;
           error.print_info(reason);
           std::string text = Parameters::one_line(reason.str());
+          while (!text.empty() && text.back() == '.')
+            text.pop_back();
           if (text.find("input stream") != std::string::npos ||
               text.find("ExcIO") != std::string::npos || text.empty())
             text = "it ends before the mesh is complete (a truncated file?)";

@@ -1006,6 +1006,11 @@ namespace SoftRobot
                                      "allowed: it must be in (0, 1], the "
                                      "fraction of the body the mesh "
                                      "represents (1 for the whole body)."));
+      AssertThrow(!write_hdf5 || dimension > 1,
+                  ExcMessage(where + "Output/Write HDF5 = true is not "
+                                     "available in 1D (deal.II's HDF5 writer "
+                                     "needs 2 or 3 space dimensions); use "
+                                     "Write VTU."));
       AssertThrow(!output_directory.empty(),
                   ExcMessage(where + "Problem/Output directory is empty; "
                                      "name a directory, e.g. 'output'."));

@@ -69,12 +69,14 @@ namespace SoftRobot
     std::ostringstream materials;
     materials << "materials:";
     for (const auto &[id, material] : parameters.by_id)
-      materials << (id == parameters.by_id.begin()->first ? " " : "; ") << id
-                << " " << material.name << " (mu = " << material.shear_modulus
-                << " kPa" << (dim == 3 ? ", kappa = " : "")
-                << (dim == 3 ? std::to_string(material.bulk_modulus) + " kPa" :
-                               std::string())
-                << ")";
+      {
+        materials << (id == parameters.by_id.begin()->first ? " " : "; ")
+                  << id << " " << material.name
+                  << " (mu = " << material.shear_modulus << " kPa";
+        if (dim == 3)
+          materials << ", kappa = " << material.bulk_modulus << " kPa";
+        materials << ")";
+      }
     trajectory.open(
       parameters.output_directory + "/" + parameters.trajectory_file,
       {"SoftRobotDynamics<" + std::to_string(dim) + "> tip trajectory of " +

@@ -5,6 +5,7 @@
 #include <cerrno>
 #include <core/config.h>
 #include <core/exceptions.h>
+#include <core/parameter_file.h>
 #include <cstdio>
 #include <deal.II/base/timer.h>
 #include <deal.II/base/utilities.h>
@@ -69,14 +70,17 @@ namespace SoftRobot
         {
           std::ostringstream reason;
           failure.print_info(reason);
-          error =
-            "Cannot write the field output at t = " + std::to_string(time) +
-            " s: " + reason.str();
+          std::ostringstream text;
+          text << "Cannot write the field output at t = " << time
+               << " s: " << Parameters::one_line(reason.str());
+          error = text.str();
         }
       catch (std::exception &failure)
         {
-          error = std::string(failure.what()) +
-                  " (the field output at t = " + std::to_string(time) + " s)";
+          std::ostringstream text;
+          text << failure.what() << " (the field output at t = " << time
+               << " s)";
+          error = text.str();
         }
       writing_seconds += timer.wall_time();
     });

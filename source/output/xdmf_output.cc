@@ -4,6 +4,7 @@
 
 #include <core/config.h>
 #include <core/exceptions.h>
+#include <core/parameter_file.h>
 #include <deal.II/base/hdf5.h>
 #include <deal.II/base/utilities.h>
 #include <output/safe_file.h>
@@ -101,7 +102,7 @@ namespace SoftRobot
         std::ostringstream reason;
         failure.print_info(reason);
         throw WriteFailure("Cannot write the HDF5 output '" + file +
-                           "': " + reason.str());
+                           "': " + Parameters::one_line(reason.str()));
       }
     // The HDF5 mesh's nodes have two coordinates in 1D and 2D, three in 3D
     // (XDMF has no geometry with one).
