@@ -41,6 +41,10 @@ namespace SoftRobot
     for (const auto &entry :
          std::filesystem::directory_iterator(directory, error))
       {
+        // Files (and links), not directories: a directory is nothing a
+        // run writes.
+        if (entry.is_directory(error))
+          continue;
         const std::string name = entry.path().filename().string();
         const bool        temporary =
           name.size() > 4 && name.substr(name.size() - 4) == ".tmp";
