@@ -330,8 +330,8 @@ namespace SoftRobot
     std::unique_ptr<FieldOutput<dim>> field_output;
     std::unique_ptr<XdmfOutput<dim>>  xdmf_output;
     double                            next_output_time = 0.;
-    double last_output_time   = -std::numeric_limits<double>::max();
-    bool   current_is_finite  = true;
+    double last_output_time  = -std::numeric_limits<double>::max();
+    bool   current_is_finite = true;
   };
 } // namespace SoftRobot
 
