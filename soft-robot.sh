@@ -61,14 +61,18 @@ case "${1:-}" in
     build Release build-release -DSOFT_ROBOT_BUILD_TESTS=OFF
     # The default scene is the 3D actuator; the 1D and 2D models follow.
     for scene in vertical_ds20_3d column_ds20_1d planar_ds20_2d; do
-      build-release/soft-robot parameters/bellows/$scene.prm
+      build-release/soft-robot parameters/bellows/$scene.prm \
+        --set 'Output/Existing output=replace'
       echo "Open output/$scene/solution.pvd in ParaView."
     done
     ;;
   test)
     # python3 for the check of doc/results.md; doxygen, LaTeX and
-    # Ghostscript for the annotated source (target doc).
-    packages+=(python3 doxygen texlive-latex-extra ghostscript)
+    # Ghostscript for the annotated source (target doc); h5py for the
+    # command-line tests that read the HDF5 output back, numpy and
+    # matplotlib for those of the plot script.
+    packages+=(python3 doxygen texlive-latex-extra ghostscript python3-h5py
+               python3-numpy python3-matplotlib)
     install_missing_packages
     build Debug build-debug -DSOFT_ROBOT_BUILD_TESTS=ON
     cmake --build build-debug --target doc
@@ -106,7 +110,8 @@ case "${1:-}" in
       mkdir -p "output/$name"
       local start milliseconds
       start=$(date +%s%N)
-      if ! build-release/soft-robot "$scene" > "output/$name/run.log" 2>&1; then
+      if ! build-release/soft-robot "$scene" --set 'Output/Existing output=replace' \
+          > "output/$name/run.log" 2>&1; then
         echo "FAILED: $scene (see output/$name/run.log)" >&2
         return 1
       fi

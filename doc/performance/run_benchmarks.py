@@ -35,7 +35,8 @@ from pathlib import Path
 REPOSITORY = Path(__file__).resolve().parents[2]
 
 HEADLINE = "parameters/bellows/vertical_ds20_3d.prm"
-QUIET = ["Output/Progress interval=0"]
+# (the repeats of a case run into the same directory)
+QUIET = ["Output/Progress interval=0", "Output/Existing output=replace"]
 
 # The meshes of the refinement series: the quarter model's gmsh meshes with
 # element sizes 10.5 (coarse), 5, 3, 2 and 1 mm. The ultrafine one is not

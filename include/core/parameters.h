@@ -32,6 +32,10 @@ namespace SoftRobot
     {
       unsigned int dimension;
       std::string  output_directory;
+      // The scales beyond which the tip is said to run away (see
+      // core/plausibility_guard.h); 0 chooses them from the body.
+      double runaway_displacement;
+      double runaway_speed;
 
       static void
       declare_parameters(ParameterHandler &prm);
@@ -285,7 +289,16 @@ namespace SoftRobot
     // @sect4{Output}
     struct Output
     {
-      bool         write_vtu;
+      bool write_vtu;
+      bool write_hdf5;
+      // What a run does with the files of an earlier run in its output
+      // directory (see output/output_directory.h).
+      enum class ExistingOutput
+      {
+        refuse,
+        replace
+      };
+      ExistingOutput existing_output;
       double       output_interval;
       enum class TipRegionType
       {
@@ -341,6 +354,11 @@ namespace SoftRobot
       read_string(const std::string &text);
 
       std::string source_name = "(string)";
+
+      // "In the parameter file '<name>': ", the start of the messages about
+      // the input.
+      std::string
+      where() const;
 
     private:
       void

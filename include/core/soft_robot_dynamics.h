@@ -60,9 +60,13 @@
 #include <deal.II/lac/trilinos_sparse_matrix.h>
 #include <deal.II/lac/trilinos_vector.h>
 #include <deal.II/numerics/data_out.h>
+#include <core/plausibility_guard.h>
+#include <output/cell_data.h>
 #include <output/field_output.h>
+#include <output/run_statistics.h>
 #include <output/tip_region.h>
 #include <output/trajectory_writer.h>
+#include <output/xdmf_output.h>
 #include <physics/aerodynamic_drag.h>
 #include <physics/cell_geometry.h>
 #include <physics/hyperelastic_solid.h>
@@ -119,10 +123,16 @@ namespace SoftRobot
     friend class SimulatorAccess<dim>;
 
     // @sect4{The phases of a run, in the order run() calls them}
+    //
+    // make_grid() and setup_system() check the mesh and the input that
+    // depends on it (core/input_checks.h); check_initial_state() the state
+    // that initialize_state() computed. Only then does the run write.
     void
     make_grid();
     void
     setup_system();
+    void
+    check_initial_state() const;
     // The initial displacement and velocity (or the static equilibrium),
     // the forces and acceleration at $t = 0$, and the energies the balance
     // is measured against.
@@ -136,6 +146,17 @@ namespace SoftRobot
     output_results();
     void
     write_trajectory_row();
+    // The guards of PlausibilityGuard on the current state: finite (before
+    // it is written), and a motion with a physical reading (after).
+    void
+    check_state_is_finite();
+    void
+    check_motion() const;
+    // The fields of the current state, unless they are written already or
+    // the state is not finite: the last output of every run, whatever its
+    // end time and Output interval.
+    void
+    write_final_fields();
     void
     finish_run(const double wall_time);
 
@@ -214,12 +235,24 @@ namespace SoftRobot
     // @sect4{Output}
     void
     open_trajectory();
-    std::unique_ptr<DataOut<dim>>
+    // The nodal fields of the current state in a DataOut object, and the
+    // per-cell fields beside it.
+    std::pair<std::unique_ptr<DataOut<dim>>, CellData>
     field_data() const;
+    // Writes the fields of the current state in every format asked for.
+    void
+    write_fields();
+    // Norms and energies of the current state, for the checks of
+    // finiteness.
+    std::vector<std::pair<std::string, double>>
+    state_values() const;
     void
     analyse_trajectory() const;
     void
     write_run_statistics(const double wall_time) const;
+    void
+    fill_and_write_statistics(RunStatistics &statistics,
+                              const double   wall_time) const;
     // The angular momentum of the current state (see Inertia).
     Tensor<1, 3>
     angular_momentum() const;
@@ -321,11 +354,15 @@ namespace SoftRobot
       double       last_residual          = 0.;
     } counters;
 
-    // The output.
+    // The output, and the guards that keep nonsense out of it.
     TipRegion<dim>                    tip_region;
+    PlausibilityGuard<dim>            guard;
     TrajectoryWriter                  trajectory;
     std::unique_ptr<FieldOutput<dim>> field_output;
+    std::unique_ptr<XdmfOutput<dim>>  xdmf_output;
     double                            next_output_time = 0.;
+    double last_output_time  = -std::numeric_limits<double>::max();
+    bool   current_is_finite = true;
   };
 } // namespace SoftRobot
 

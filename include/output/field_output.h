@@ -21,7 +21,14 @@
 // output, the end of the run and the destructor wait for the thread
 // (finish()), so that no file is left half written. The PVD record is
 // written to a temporary file and renamed, so that an interrupted run
-// leaves the previous record intact.
+// leaves the previous record intact (output/safe_file.h); every file's
+// stream is checked, and a failure stops the run with a WriteFailure on
+// all processes at the next finish().
+//
+// The per-cell fields are written as true cell data (output/cell_data.h).
+// The record of the outputs so far is kept in memory and rewritten whole
+// at every output; a restart that continues a run hands the records of
+// the earlier part to the constructor and goes on numbering from there.
 //
 // Implemented in source/output/field_output.cc.
 
@@ -30,8 +37,8 @@
 
 #include <deal.II/fe/mapping.h>
 #include <deal.II/numerics/data_out.h>
-
 #include <memory>
+#include <output/cell_data.h>
 #include <string>
 #include <thread>
 #include <utility>
@@ -46,16 +53,24 @@ namespace SoftRobot
   {
   public:
     // Files go to `directory`; the patches have `subdivisions` per cell.
-    FieldOutput(const std::string  &directory,
-                const Mapping<dim> &mapping,
-                const unsigned int  subdivisions,
-                const MPI_Comm      mpi_communicator);
+    // `records` are the outputs of an earlier part of the run (time and
+    // PVTU file), which the PVD record goes on from.
+    FieldOutput(
+      const std::string                                 &directory,
+      const Triangulation<dim>                          &triangulation,
+      const Mapping<dim>                                &mapping,
+      const unsigned int                                 subdivisions,
+      const MPI_Comm                                     mpi_communicator,
+      const std::vector<std::pair<double, std::string>> &records = {});
     ~FieldOutput();
 
     // Waits for the previous output, then starts writing `data_out` (with
-    // its fields and flags) as the output at `time` in the writing thread.
+    // its nodal fields and flags) and `cell_data` as the output at `time`
+    // in the writing thread.
     void
-    write(std::unique_ptr<DataOut<dim>> data_out, const double time);
+    write(std::unique_ptr<DataOut<dim>> data_out,
+          CellData                      cell_data,
+          const double                  time);
 
     // Waits for the writing thread and reports its failure. Every process
     // calls it at the same point of the run, and a failure on one of them
@@ -75,20 +90,23 @@ namespace SoftRobot
     // patches changes the DataOut object, which only this thread touches
     // until finish()).
     void
-    write_files(DataOut<dim>       &data_out,
-                const unsigned int  index,
-                const std::vector<std::pair<double, std::string>> &records)
-      const;
+    write_files(
+      DataOut<dim>                                      &data_out,
+      const CellData                                    &cell_data,
+      const unsigned int                                 index,
+      const std::vector<std::pair<double, std::string>> &records) const;
 
-    const std::string   directory;
-    const Mapping<dim> &mapping;
-    const unsigned int  subdivisions;
-    const unsigned int  n_processes;
-    const unsigned int  rank;
-    const MPI_Comm      mpi_communicator;
+    const std::string         directory;
+    const Triangulation<dim> &triangulation;
+    const Mapping<dim>       &mapping;
+    const unsigned int        subdivisions;
+    const unsigned int        n_processes;
+    const unsigned int        rank;
+    const MPI_Comm            mpi_communicator;
 
     std::vector<std::pair<double, std::string>> pvd_records;
     std::unique_ptr<DataOut<dim>>               job;
+    CellData                                    job_cell_data;
     std::thread                                 writer;
     std::string                                 error;
     double                                      writing_seconds = 0.;

@@ -26,7 +26,6 @@
 #include <deal.II/fe/mapping.h>
 #include <deal.II/lac/affine_constraints.h>
 #include <deal.II/lac/trilinos_vector.h>
-
 #include <functional>
 #include <utility>
 #include <vector>
@@ -42,14 +41,14 @@ namespace SoftRobot
     // The weights of the region `Output/Tip region`; `density` gives the
     // density of a material id.
     void
-    reinit(const Parameters::AllParameters                       &parameters,
-           const Mapping<dim>                                    &mapping,
-           const DoFHandler<dim>                                 &dof_handler,
-           const Quadrature<dim>                                 &cell_quadrature,
-           const Quadrature<dim - 1>                             &face_quadrature,
-           const AffineConstraints<double>                       &constraints,
+    reinit(const Parameters::AllParameters &parameters,
+           const Mapping<dim>              &mapping,
+           const DoFHandler<dim>           &dof_handler,
+           const Quadrature<dim>           &cell_quadrature,
+           const Quadrature<dim - 1>       &face_quadrature,
+           const AffineConstraints<double> &constraints,
            const std::function<double(const types::material_id)> &density,
-           const MPI_Comm                                         mpi_communicator);
+           const MPI_Comm mpi_communicator);
 
     // The mean displacement and velocity of the region.
     std::pair<Tensor<1, dim>, Tensor<1, dim>>

@@ -5,7 +5,10 @@
 // run) and that doc/plot_tip_trajectory.py plots. Lines starting with '#'
 // are comments; the first other line names the columns. Only MPI process 0
 // writes; every row is flushed at once, so that a run that is interrupted
-// leaves whole rows.
+// leaves whole rows, and the stream is checked after every flush: a full
+// disk stops the run with a WriteFailure on every process (exit code 3)
+// at the row that could not be written. A restart will open the file of
+// the earlier part of the run and append to it.
 //
 // Implemented in source/output/trajectory_writer.cc.
 
@@ -13,8 +16,8 @@
 #define soft_robot_output_trajectory_writer_h
 
 #include <deal.II/base/mpi.h>
-
 #include <fstream>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -32,7 +35,8 @@ namespace SoftRobot
          const std::vector<std::string> &comments,
          const std::vector<std::string> &columns);
 
-    // One row, in the order of the columns, with ten significant digits.
+    // One row, in the order of the columns, with ten significant digits;
+    // every value must be finite. Collective, as are open() and close().
     void
     write_row(const std::vector<double> &values);
 
@@ -40,9 +44,13 @@ namespace SoftRobot
     close();
 
   private:
-    const bool    root;
-    std::string   name;
-    std::ofstream file;
+    void
+    on_root(const std::function<void()> &write);
+
+    const MPI_Comm mpi_communicator;
+    const bool     root;
+    std::string    name;
+    std::ofstream  file;
   };
 } // namespace SoftRobot
 

@@ -4,7 +4,9 @@
 
 #include <core/config.h>
 #include <core/expression_function.h>
+#include <core/input_checks.h>
 #include <core/mesh.h>
+#include <core/parameter_file.h>
 #include <deal.II/base/function_parser.h>
 #include <deal.II/grid/grid_generator.h>
 #include <deal.II/grid/grid_in.h>
@@ -16,6 +18,65 @@
 
 namespace SoftRobot
 {
+  // @sect4{read_mesh_file}
+  //
+  // deal.II's GridIn reports a file it cannot read in its own words ("The
+  // string <> is not recognized at the present position of a Gmsh Mesh
+  // file" for an empty one, a page on input streams for a truncated one),
+  // without the file's name. The file is therefore looked at first (does it
+  // exist, is it empty, does it start as a gmsh file does), and a failure
+  // of GridIn is reported with the file's name and GridIn's reason.
+  namespace
+  {
+    template <int dim>
+    void
+    read_mesh_file(const Parameters::AllParameters &parameters,
+                   Triangulation<dim>              &serial)
+    {
+      const std::string where =
+        parameters.where() + "Geometry/Mesh file '" + parameters.mesh_file +
+        "' ";
+      std::ifstream input(parameters.mesh_file);
+      AssertThrow(input, ExcMessage(where + "cannot be opened."));
+      std::string first_word;
+      input >> first_word;
+      AssertThrow(!first_word.empty(), ExcMessage(where + "is empty."));
+      AssertThrow(first_word == "$MeshFormat",
+                  ExcMessage(where +
+                             "is not a gmsh mesh: it starts with '" +
+                             first_word.substr(0, 40) +
+                             "' instead of '$MeshFormat' (formats 2.2 and 4.1 "
+                             "are read, written as ASCII)."));
+      input.seekg(0);
+      GridIn<dim> grid_in;
+      grid_in.attach_triangulation(serial);
+      try
+        {
+          grid_in.read_msh(input);
+        }
+      catch (ExceptionBase &error)
+        {
+          std::ostringstream reason;
+          error.print_info(reason);
+          std::string text = Parameters::one_line(reason.str());
+          while (!text.empty() && text.back() == '.')
+            text.pop_back();
+          if (text.find("input stream") != std::string::npos ||
+              text.find("ExcIO") != std::string::npos || text.empty())
+            text = "it ends before the mesh is complete (a truncated file?)";
+          AssertThrow(false,
+                      ExcMessage(where + "cannot be read as a " +
+                                 std::to_string(dim) + "D gmsh mesh: " + text +
+                                 "."));
+        }
+      AssertThrow(serial.n_active_cells() > 0,
+                  ExcMessage(where + "has no cells of dimension " +
+                             std::to_string(dim) + "."));
+    }
+  } // namespace
+
+
+
   // @sect4{create_mesh}
   //
   // Generators number materials in their own ways (colorized boxes by
@@ -47,7 +108,8 @@ namespace SoftRobot
                                    parameters.generator_name +
                                    "' does not accept the arguments '" +
                                    parameters.generator_arguments + "' in " +
-                                   std::to_string(dim) + "D: " + reason.str()));
+                                   std::to_string(dim) + "D: " +
+                                   Parameters::one_line(reason.str())));
           }
         if (parameters.convert_to_simplices && dim > 1)
           GridGenerator::convert_hypercube_to_simplex_mesh(generated, serial);
@@ -55,12 +117,7 @@ namespace SoftRobot
           serial.copy_triangulation(generated);
       }
     else
-      {
-        GridIn<dim> grid_in;
-        grid_in.attach_triangulation(serial);
-        std::ifstream input(parameters.mesh_file);
-        grid_in.read_msh(input);
-      }
+      read_mesh_file(parameters, serial);
 
     if (parameters.distortion > 0)
       GridTools::distort_random(parameters.distortion, serial, true);
@@ -71,13 +128,48 @@ namespace SoftRobot
         cell->set_material_id(1);
     if (!parameters.material_id_function.empty())
       {
+        // The function is evaluated at every cell centre first, so that a
+        // syntax error or a value that is not finite is an input error that
+        // names the entry (see InputChecks::check_expression()).
+        const std::string   entry = "Geometry/Material id function";
         FunctionParser<dim> id_function(1);
-        id_function.initialize(FunctionParser<dim>::default_variable_names(),
-                               parameters.material_id_function,
-                               parse_constants(parameters.constants));
+        try
+          {
+            id_function.initialize(FunctionParser<dim>::default_variable_names(),
+                                   parameters.material_id_function,
+                                   parse_constants(parameters.constants));
+          }
+        catch (ExceptionBase &error)
+          {
+            std::ostringstream reason;
+            error.print_info(reason);
+            AssertThrow(false,
+                        ExcMessage(parameters.where() + entry + ": " +
+                                   Parameters::one_line(reason.str())));
+          }
+        std::vector<Point<dim>> centres;
         for (const auto &cell : serial.active_cell_iterators())
-          cell->set_material_id(static_cast<types::material_id>(
-            std::lround(id_function.value(cell->center()))));
+          centres.push_back(cell->center());
+        InputChecks::check_expression(id_function,
+                                      parameters,
+                                      entry,
+                                      parameters.material_id_function,
+                                      centres,
+                                      {0.});
+        for (const auto &cell : serial.active_cell_iterators())
+          {
+            const long id = std::lround(id_function.value(cell->center()));
+            AssertThrow(id >= 0 && id <= Parameters::Materials::max_material_id,
+                        ExcMessage(parameters.where() + entry + " = '" +
+                                   parameters.material_id_function +
+                                   "' gives the material id " +
+                                   std::to_string(id) + " at the centre of a "
+                                   "cell; ids are 0 to " +
+                                   std::to_string(
+                                     Parameters::Materials::max_material_id) +
+                                   "."));
+            cell->set_material_id(static_cast<types::material_id>(id));
+          }
       }
 
   }
@@ -85,6 +177,20 @@ namespace SoftRobot
 
 
   // @sect4{check_mesh_ids}
+  //
+  // The messages name the mesh: its file, or the generator.
+  namespace
+  {
+    std::string
+    mesh_name(const Parameters::AllParameters &parameters)
+    {
+      return (parameters.mesh_source == Parameters::Geometry::MeshSource::file) ?
+               "the mesh file '" + parameters.mesh_file + "'" :
+               "the mesh of Geometry/Generator '" + parameters.generator_name +
+                 "'";
+    }
+  } // namespace
+
   template <int dim>
   unsigned int
   check_mesh_ids(const Parameters::AllParameters &parameters,
@@ -101,8 +207,8 @@ namespace SoftRobot
       }
     for (const types::material_id id : mesh_materials)
       AssertThrow(parameters.by_id.count(id) == 1,
-                  ExcMessage("In '" + parameters.source_name +
-                             "': the mesh has cells with material id " +
+                  ExcMessage(parameters.where() + mesh_name(parameters) +
+                             " has cells with material id " +
                              std::to_string(id) +
                              ", but the file has no subsection 'Material " +
                              std::to_string(id) + "' with a Name."));
@@ -124,7 +230,8 @@ namespace SoftRobot
                   ExcMessage("In '" + parameters.source_name +
                              "': Output/Tip region names material " +
                              std::to_string(parameters.tip_region_id) +
-                             ", which no cell of the mesh has."));
+                             ", which no cell of " + mesh_name(parameters) +
+                             " has."));
     for (const auto &[id, entry] : named_boundaries)
       {
         std::string present;
@@ -133,8 +240,8 @@ namespace SoftRobot
         AssertThrow(mesh_boundaries.count(id) == 1,
                     ExcMessage("In '" + parameters.source_name + "': " + entry +
                                " names boundary id " + std::to_string(id) +
-                               ", which the mesh does not have (it has:" +
-                               present + ")."));
+                               ", which " + mesh_name(parameters) +
+                               " does not have (it has:" + present + ")."));
       }
 
     return mesh_materials.size();

@@ -1,3 +1,4 @@
+#include <core/parameter_file.h>
 #include <core/parameters.h>
 #include <deal.II/base/exceptions.h>
 #include <deal.II/base/numbers.h>
@@ -27,6 +28,25 @@ namespace SoftRobot
                         Patterns::Anything(),
                         "Directory for the VTU files, the PVD record and the "
                         "tip trajectory. It is created if it does not exist.");
+      // A tip that moves farther than the body is large, or faster than
+      // waves run through its softest material, has left every motion a
+      // soft robot makes: what the run computes beyond that point is the
+      // answer to a load or a time step no experiment has, and it stops
+      // (see core/plausibility_guard.h).
+      prm.declare_entry("Run-away displacement",
+                        "0",
+                        Patterns::Double(0),
+                        "The run stops (exit code 2, the output so far is "
+                        "kept) when the tip displacement exceeds this, mm. "
+                        "0: ten times the diagonal of the bounding box of "
+                        "the mesh.");
+      prm.declare_entry("Run-away speed",
+                        "0",
+                        Patterns::Double(0),
+                        "The run stops (exit code 2, the output so far is "
+                        "kept) when the tip speed exceeds this, mm/s. 0: ten "
+                        "times the shear wave speed sqrt(mu / rho) of the "
+                        "softest material.");
       prm.leave_subsection();
     }
 
@@ -35,7 +55,9 @@ namespace SoftRobot
     {
       prm.enter_subsection("Problem");
       dimension        = prm.get_integer("Dimension");
-      output_directory = prm.get("Output directory");
+      output_directory     = prm.get("Output directory");
+      runaway_displacement = prm.get_double("Run-away displacement");
+      runaway_speed        = prm.get_double("Run-away speed");
       prm.leave_subsection();
     }
 
@@ -809,6 +831,24 @@ namespace SoftRobot
                         Patterns::Bool(),
                         "Write the fields for ParaView (VTU files and a PVD "
                         "record with the physical times).");
+      prm.declare_entry("Write HDF5",
+                        "false",
+                        Patterns::Bool(),
+                        "Write the fields as HDF5 files, one per output "
+                        "time for all MPI processes together, with the mesh "
+                        "in a file of its own written once, and an XDMF "
+                        "record (solution.xdmf) that ParaView and VisIt "
+                        "open. Can be combined with Write VTU.");
+      prm.declare_entry("Existing output",
+                        "refuse",
+                        Patterns::Selection("refuse|replace"),
+                        "What a run does when its output directory holds "
+                        "the output of an earlier run (a trajectory, field "
+                        "output, statistics or spectra). 'refuse': stop "
+                        "before anything is written, with a message (exit "
+                        "code 1). 'replace': remove the earlier run's field "
+                        "output, statistics and spectra, and write the "
+                        "trajectory anew. Other files are never touched.");
       prm.declare_entry("Output interval",
                         "0.05",
                         Patterns::Double(0),
@@ -859,6 +899,10 @@ namespace SoftRobot
     {
       prm.enter_subsection("Output");
       write_vtu         = prm.get_bool("Write VTU");
+      write_hdf5        = prm.get_bool("Write HDF5");
+      existing_output   = (prm.get("Existing output") == "replace") ?
+                            ExistingOutput::replace :
+                            ExistingOutput::refuse;
       output_interval   = prm.get_double("Output interval");
       trajectory_file   = prm.get("Trajectory file");
       progress_interval = prm.get_integer("Progress interval");
@@ -873,7 +917,12 @@ namespace SoftRobot
                              prm.get("Tip region") + "'."));
       tip_region_type = (words[0] == "boundary") ? TipRegionType::boundary :
                                                    TipRegionType::material;
-      tip_region_id   = Utilities::string_to_int(words[1]);
+      const int id    = Utilities::string_to_int(words[1]);
+      AssertThrow(id >= 0 && id < 256,
+                  ExcMessage("Output/Tip region: the id in '" +
+                             prm.get("Tip region") +
+                             "' must be in [0, 255]."));
+      tip_region_id = id;
       prm.leave_subsection();
     }
 
@@ -945,7 +994,7 @@ namespace SoftRobot
             error.print_info(reason);
             for (unsigned int i = 0; i + 1 < path.size(); ++i)
               prm.leave_subsection();
-            AssertThrow(false, ExcMessage(where + reason.str()));
+            AssertThrow(false, ExcMessage(where + one_line(reason.str())));
           }
         for (unsigned int i = 0; i + 1 < path.size(); ++i)
           prm.leave_subsection();
@@ -954,44 +1003,52 @@ namespace SoftRobot
 
 
 
-    // ParameterHandler's own messages name the file, the line, the entry
-    // and its pattern when a value is out of range. We add the file name to
-    // the messages about combinations of entries that it cannot check.
+    // The file is read by ParameterFileText, which expands its includes
+    // (relative to the file that holds them) and turns ParameterHandler's
+    // messages into one line that names the file, line, subsection, entry,
+    // value and pattern. We add the file name to the messages about
+    // combinations of entries that ParameterHandler cannot check.
     void
     AllParameters::read_file(const std::string              &filename,
                              const std::vector<std::string> &overrides)
     {
-      std::ifstream file(filename);
-      AssertThrow(file,
-                  ExcMessage("Cannot open the parameter file '" + filename +
-                             "'."));
+      const ParameterFileText file(filename);
       source_name = filename;
-
-      // File names in the parameter file (include statements, the mesh)
-      // are relative to the directory of the parameter file, so that a
-      // scene runs from anywhere. The line structure is kept, so that
-      // ParameterHandler's messages still give the right line numbers.
-      const std::filesystem::path directory =
-        std::filesystem::path(filename).parent_path();
-      std::stringstream text;
-      std::string       line;
-      while (std::getline(file, line))
-        {
-          std::istringstream words(line);
-          std::string        keyword, included;
-          words >> keyword >> included;
-          if ((keyword == "include" || keyword == "INCLUDE") &&
-              std::filesystem::path(included).is_relative())
-            line = "include " + (directory / included).string();
-          text << line << '\n';
-        }
 
       ParameterHandler prm;
       declare_parameters(prm);
-      prm.parse_input(text, filename);
+      try
+        {
+          std::istringstream text(file.text());
+          prm.parse_input(text, filename);
+        }
+      catch (ExceptionBase &error)
+        {
+          std::ostringstream reason;
+          error.print_info(reason);
+          AssertThrow(false, ExcMessage(file.locate(reason.str())));
+        }
       for (const std::string &assignment : overrides)
         apply_override(prm, assignment, filename);
-      parse_parameters(prm);
+      try
+        {
+          parse_parameters(prm);
+        }
+      catch (ExceptionBase &error)
+        {
+          std::ostringstream reason;
+          error.print_info(reason);
+          const std::string message = one_line(reason.str());
+          AssertThrow(false,
+                      ExcMessage(message.rfind("In ", 0) == 0 ?
+                                   message :
+                                   where() + message));
+        }
+      // File names in the parameter file (the mesh) are relative to the
+      // directory of the parameter file, so that a scene runs from
+      // anywhere.
+      const std::filesystem::path directory =
+        std::filesystem::path(filename).parent_path();
       if (!mesh_file.empty() && std::filesystem::path(mesh_file).is_relative())
         mesh_file = (directory / mesh_file).string();
       check_consistency();
@@ -1009,10 +1066,31 @@ namespace SoftRobot
 
 
 
+    std::string
+    AllParameters::where() const
+    {
+      return "In the parameter file '" + source_name + "': ";
+    }
+
+
+
     void
     AllParameters::check_consistency() const
     {
-      const std::string where = "In the parameter file '" + source_name + "': ";
+      const std::string where = this->where();
+      AssertThrow(model_fraction > 0,
+                  ExcMessage(where + "Geometry/Model fraction = 0 is not "
+                                     "allowed: it must be in (0, 1], the "
+                                     "fraction of the body the mesh "
+                                     "represents (1 for the whole body)."));
+      AssertThrow(!write_hdf5 || dimension > 1,
+                  ExcMessage(where + "Output/Write HDF5 = true is not "
+                                     "available in 1D (deal.II's HDF5 writer "
+                                     "needs 2 or 3 space dimensions); use "
+                                     "Write VTU."));
+      AssertThrow(!output_directory.empty(),
+                  ExcMessage(where + "Problem/Output directory is empty; "
+                                     "name a directory, e.g. 'output'."));
       AssertThrow(time_step >= minimum_time_step,
                   ExcMessage(where + "Time integration/Time step (" +
                              std::to_string(time_step) +

@@ -9,6 +9,7 @@
 #include <assembly/direct_address_assembler.h>
 #include <core/config.h>
 #include <core/expression_function.h>
+#include <core/input_checks.h>
 #include <core/mesh.h>
 #include <core/soft_robot_dynamics.h>
 #include <deal.II/base/quadrature_lib.h>
@@ -21,8 +22,8 @@
 #include <deal.II/lac/dynamic_sparsity_pattern.h>
 #include <deal.II/lac/sparsity_tools.h>
 #include <deal.II/numerics/vector_tools.h>
+#include <output/output_directory.h>
 
-#include <filesystem>
 #include <iomanip>
 
 namespace SoftRobot
@@ -96,7 +97,9 @@ namespace SoftRobot
   // METIS in Debian's build). Unlike the p4est-based distributed
   // triangulation it supports 1D meshes and tetrahedral meshes from gmsh,
   // which the actuator needs. The expressions of the parameter file are
-  // parsed here.
+  // parsed here; main() has checked them (InputChecks::check_expression_syntax())
+  // before, so that a mistake in them is reported before any member with
+  // MPI communication in its destructor (the timer) exists.
   template <int dim>
   SoftRobotDynamics<dim>::SoftRobotDynamics(
     const Parameters::AllParameters &parameters,
@@ -169,6 +172,9 @@ namespace SoftRobot
       create_mesh(parameters, serial);
       triangulation.copy_triangulation(serial);
     }
+    InputChecks::check_refinement_size(parameters,
+                                       dim,
+                                       triangulation.n_active_cells());
     triangulation.refine_global(parameters.global_refinements);
     const unsigned int n_materials = check_mesh_ids(parameters, triangulation);
 
@@ -196,6 +202,9 @@ namespace SoftRobot
         mass_quadrature = std::make_unique<QGauss<dim>>(p + 1);
         face_quadrature = std::make_unique<QGauss<dim - 1>>(p + 1);
       }
+
+    InputChecks::check_mesh_geometry(
+      parameters, triangulation, *mapping, *fe, *cell_quadrature);
 
     pcout << "Mesh: " << triangulation.n_global_active_cells() << ' '
           << (simplex_mesh ? "simplex" : "hypercube") << " cells, "
@@ -319,6 +328,12 @@ namespace SoftRobot
                         return inertia.density(id);
                       },
                       mpi_communicator);
+    guard.reinit(
+      parameters,
+      *mapping,
+      dof_handler,
+      [this](const types::material_id id) { return inertia.density(id); },
+      mpi_communicator);
 
     pcout << "Degrees of freedom: " << dof_handler.n_dofs() << " ("
           << fe->get_name() << ", "
@@ -328,12 +343,60 @@ namespace SoftRobot
 
 
 
+  // @sect4{SoftRobotDynamics::check_initial_state}
+  //
+  // The input, the mesh and the initial fields have been checked; what is
+  // left is the state computed from them (the static equilibrium, the
+  // initial acceleration, the energies), which must be finite and within
+  // what the output can store before anything is written.
+  template <int dim>
+  void
+  SoftRobotDynamics<dim>::check_initial_state() const
+  {
+    InputChecks::check_initial_state(parameters, state_values());
+  }
+
+
+
+  // @sect4{SoftRobotDynamics::check_state_is_finite}
+  template <int dim>
+  void
+  SoftRobotDynamics<dim>::check_state_is_finite()
+  {
+    try
+      {
+        guard.check_finite(current.time, state_values());
+      }
+    catch (RunAborted &)
+      {
+        current_is_finite = false;
+        throw;
+      }
+  }
+
+
+
+  // @sect4{SoftRobotDynamics::check_motion}
+  template <int dim>
+  void
+  SoftRobotDynamics<dim>::check_motion() const
+  {
+    const auto [u_tip, v_tip] = tip_region.motion(current.u, current.v);
+    guard.check_motion(current.time, u_tip, v_tip, current.u);
+  }
+
+
+
   // @sect4{SoftRobotDynamics::run}
   //
-  // The whole simulation. The output directory is created only after the
-  // mesh has been read and checked, so a bad input leaves nothing behind.
-  // A run whose time step has to be cut below its minimum ends with
-  // RunAborted; its last state is written first.
+  // The whole simulation. Everything the input determines is checked
+  // before the output directory is touched (core/input_checks.h): the
+  // parameter file, the mesh, the expressions, the materials, the initial
+  // fields and the initial state computed from them. A run that fails its
+  // input leaves an existing output directory byte for byte as it was.
+  // A run that cannot continue, or whose motion has lost its physical
+  // meaning (core/plausibility_guard.h), ends with RunAborted; its last
+  // finite state is written first. The final state is always written.
   template <int dim>
   void
   SoftRobotDynamics<dim>::run()
@@ -351,28 +414,50 @@ namespace SoftRobot
                "only first-order accurate."
             << std::endl;
 
+    InputChecks::check_output_names(parameters);
     make_grid();
     setup_system();
+    for (const std::string &warning :
+         InputChecks::check_materials_and_loads(parameters, triangulation))
+      pcout << warning << std::endl;
+    InputChecks::check_initial_fields(parameters,
+                                      *mapping,
+                                      dof_handler,
+                                      *cell_quadrature,
+                                      constraints,
+                                      mpi_communicator);
+    initialize_state();
+    check_initial_state();
 
-    if (Utilities::MPI::this_mpi_process(mpi_communicator) == 0)
-      std::filesystem::create_directories(parameters.output_directory);
+    // Only now is anything written.
+    prepare_output_directory(parameters, mpi_communicator);
     open_trajectory();
+    const unsigned int subdivisions = simplex_mesh ? 1 : parameters.degree;
     if (parameters.write_vtu)
       field_output =
         std::make_unique<FieldOutput<dim>>(parameters.output_directory,
+                                           triangulation,
                                            *mapping,
-                                           simplex_mesh ? 1 : parameters.degree,
+                                           subdivisions,
                                            mpi_communicator);
+    if (parameters.write_hdf5)
+      xdmf_output =
+        std::make_unique<XdmfOutput<dim>>(parameters.output_directory,
+                                          triangulation,
+                                          *mapping,
+                                          subdivisions,
+                                          mpi_communicator);
 
-    initialize_state();
     write_trajectory_row();
     output_results();
     try
       {
         while (advance_one_step())
           {
+            check_state_is_finite();
             write_trajectory_row();
             output_results();
+            check_motion();
             if (parameters.progress_interval > 0 &&
                 counters.steps % parameters.progress_interval == 0)
               {
@@ -393,13 +478,12 @@ namespace SoftRobot
       }
     catch (RunAborted &)
       {
+        write_final_fields();
         if (field_output)
-          {
-            field_output->write(field_data(), current.time);
-            field_output->finish();
-          }
+          field_output->finish();
         throw;
       }
+    write_final_fields();
     finish_run(wall_clock.wall_time());
   }
 
@@ -412,6 +496,9 @@ namespace SoftRobot
   template SoftRobotDynamics<dim>::~SoftRobotDynamics();              \
   template void SoftRobotDynamics<dim>::make_grid();                  \
   template void SoftRobotDynamics<dim>::setup_system();               \
+  template void SoftRobotDynamics<dim>::check_initial_state() const;  \
+  template void SoftRobotDynamics<dim>::check_state_is_finite();      \
+  template void SoftRobotDynamics<dim>::check_motion() const;         \
   template void SoftRobotDynamics<dim>::run();
   SOFT_ROBOT_FOR_EACH_DIMENSION(SOFT_ROBOT_INSTANTIATE)
 #undef SOFT_ROBOT_INSTANTIATE

@@ -13,8 +13,10 @@
 #include <deal.II/base/multithread_info.h>
 #include <deal.II/base/utilities.h>
 #include <output/run_statistics.h>
+#include <output/safe_file.h>
 
-#include <fstream>
+#include <cmath>
+#include <sstream>
 
 namespace SoftRobot
 {
@@ -63,12 +65,25 @@ namespace SoftRobot
       columns.insert(columns.end(), {"L_x", "L_y", "L_z"});
     else if (dim == 2)
       columns.emplace_back("L_z");
+    // The materials, for the title of a plot (doc/plot_tip_trajectory.py).
+    std::ostringstream materials;
+    materials << "materials:";
+    for (const auto &[id, material] : parameters.by_id)
+      {
+        materials << (id == parameters.by_id.begin()->first ? " " : "; ")
+                  << id << " " << material.name
+                  << " (mu = " << material.shear_modulus << " kPa";
+        if (dim == 3)
+          materials << ", kappa = " << material.bulk_modulus << " kPa";
+        materials << ")";
+      }
     trajectory.open(
       parameters.output_directory + "/" + parameters.trajectory_file,
       {"SoftRobotDynamics<" + std::to_string(dim) + "> tip trajectory of " +
          Parameters::name_of(parameters.tip_region_type) + ' ' +
          std::to_string(parameters.tip_region_id) + ", from " +
          parameters.source_name,
+       materials.str(),
        "units: s, mm, mm/s; energies in kg mm^2/s^2 (= 1e-6 J); "
        "angular momentum in kg mm^2/s"},
       columns);
@@ -115,12 +130,70 @@ namespace SoftRobot
   void
   SoftRobotDynamics<dim>::output_results()
   {
-    if (!field_output ||
+    if ((!field_output && !xdmf_output) ||
         current.time < next_output_time - 1e-9 * parameters.time_step)
       return;
-    TimerOutput::Scope timer_section(computing_timer, "Output");
-    field_output->write(field_data(), current.time);
+    write_fields();
     next_output_time += parameters.output_interval;
+  }
+
+
+
+  // @sect4{SoftRobotDynamics::write_fields}
+  template <int dim>
+  void
+  SoftRobotDynamics<dim>::write_fields()
+  {
+    TimerOutput::Scope timer_section(computing_timer, "Output");
+    if (field_output)
+      {
+        auto [data_out, cell_data] = field_data();
+        field_output->write(std::move(data_out),
+                            std::move(cell_data),
+                            current.time);
+      }
+    if (xdmf_output)
+      {
+        auto [data_out, cell_data] = field_data();
+        xdmf_output->write(*data_out, cell_data, current.time);
+      }
+    last_output_time = current.time;
+  }
+
+
+
+  // @sect4{SoftRobotDynamics::write_final_fields}
+  //
+  // A run whose end time is not a multiple of the output interval, or that
+  // stopped between two outputs, still ends with its last state; one that
+  // stopped right after an output does not write it twice.
+  template <int dim>
+  void
+  SoftRobotDynamics<dim>::write_final_fields()
+  {
+    if ((field_output || xdmf_output) && current_is_finite &&
+        current.time > last_output_time + 1e-9 * parameters.time_step)
+      write_fields();
+  }
+
+
+
+  // @sect4{SoftRobotDynamics::state_values}
+  template <int dim>
+  std::vector<std::pair<std::string, double>>
+  SoftRobotDynamics<dim>::state_values() const
+  {
+    const auto [u_tip, v_tip] = tip_region.motion(current.u, current.v);
+    return {{"largest displacement", current.u.linfty_norm()},
+            {"largest velocity", current.v.linfty_norm()},
+            {"largest acceleration", current.a.linfty_norm()},
+            {"tip displacement", u_tip.norm()},
+            {"tip velocity", v_tip.norm()},
+            {"kinetic energy", energy.kinetic},
+            {"strain energy", energy.strain},
+            {"gravitational energy", energy.gravity_potential},
+            {"traction work", energy.traction_work},
+            {"damping dissipation", energy.damping_dissipation}};
   }
 
 
@@ -128,13 +201,16 @@ namespace SoftRobot
   // @sect4{SoftRobotDynamics::field_data}
   //
   // The nodal fields displacement, velocity and acceleration, and per cell
-  // the averages over its quadrature points of the volume ratio $J$, the
-  // Cauchy stress and its von Mises equivalent, besides the material id and
-  // the MPI rank that owns the cell. ParaView's "Warp By Vector" with the
-  // displacement shows the deformed body. The cell averages come from the
-  // material laws at the cell's quadrature points (HyperelasticSolid).
+  // the averages over its quadrature points of the volume ratio $J$ (in
+  // the reduced models the stretch of the 1D column or the area ratio of
+  // the 2D strip, named so), the Cauchy stress and its von Mises
+  // equivalent, besides the material id and the MPI rank that owns the
+  // cell. ParaView's "Warp By Vector" with the displacement shows the
+  // deformed body. The cell averages come from the material laws at the
+  // cell's quadrature points (HyperelasticSolid); they are written as cell
+  // data (output/cell_data.h).
   template <int dim>
-  std::unique_ptr<DataOut<dim>>
+  std::pair<std::unique_ptr<DataOut<dim>>, CellData>
   SoftRobotDynamics<dim>::field_data() const
   {
     TrilinosWrappers::MPI::Vector ghosted_u(locally_owned_dofs,
@@ -175,6 +251,19 @@ namespace SoftRobot
           ++cell_number;
         }
 
+    CellData cell_data;
+    cell_data.add((dim == 1) ? "stretch" : (dim == 2) ? "area_ratio" : "J",
+                  volume_ratio);
+    cell_data.add("von_Mises_stress", von_mises);
+    cell_data.add("material_id", material);
+    cell_data.add("mpi_rank", rank);
+    const char  *axis = "xyz";
+    unsigned int c    = 0;
+    for (unsigned int i = 0; i < dim; ++i)
+      for (unsigned int j = i; j < dim; ++j)
+        cell_data.add(std::string("cauchy_stress_") + axis[i] + axis[j],
+                      stress[c++]);
+
     auto data_out = std::make_unique<DataOut<dim>>();
     data_out->attach_dof_handler(dof_handler);
     const std::vector<DataComponentInterpretation::DataComponentInterpretation>
@@ -188,23 +277,6 @@ namespace SoftRobot
                                 std::vector<std::string>(dim, name),
                                 DataOut<dim>::type_dof_data,
                                 vector_field);
-    data_out->add_data_vector(volume_ratio, "J", DataOut<dim>::type_cell_data);
-    data_out->add_data_vector(von_mises,
-                              "von_Mises_stress",
-                              DataOut<dim>::type_cell_data);
-    data_out->add_data_vector(material,
-                              "material_id",
-                              DataOut<dim>::type_cell_data);
-    data_out->add_data_vector(rank, "mpi_rank", DataOut<dim>::type_cell_data);
-    const char  *axis = "xyz";
-    unsigned int c    = 0;
-    for (unsigned int i = 0; i < dim; ++i)
-      for (unsigned int j = i; j < dim; ++j)
-        data_out->add_data_vector(stress[c++],
-                                  std::string("cauchy_stress_") + axis[i] +
-                                    axis[j],
-                                  DataOut<dim>::type_cell_data);
-
     // zlib's fastest level: deal.II's default, the best compression, took a
     // seventh of the headline case's run time for files about a third
     // smaller (doc/performance_discussion.md).
@@ -213,7 +285,7 @@ namespace SoftRobot
     flags.cycle             = counters.steps;
     flags.compression_level = DataOutBase::VtkFlags::best_speed;
     data_out->set_flags(flags);
-    return data_out;
+    return {std::move(data_out), std::move(cell_data)};
   }
 
 
@@ -230,6 +302,7 @@ namespace SoftRobot
   {
     if (Utilities::MPI::this_mpi_process(mpi_communicator) != 0)
       return;
+    // (Process 0 alone; finish_run() makes a failure known to all.)
     const std::string directory = parameters.output_directory + "/";
     Analysis::TrajectoryAnalysis analysis;
     try
@@ -246,10 +319,14 @@ namespace SoftRobot
               << parameters.spectral_skip << " s)" << std::endl;
         return;
       }
-    std::ofstream(directory + "tip_spectrum.csv")
-      << Analysis::spectral_table_csv(analysis);
-    std::ofstream(directory + "tip_spectrum_magnitudes.csv")
-      << Analysis::spectrum_csv(analysis);
+    write_file_atomically(directory + "tip_spectrum.csv",
+                          [&](std::ostream &out) {
+                            out << Analysis::spectral_table_csv(analysis);
+                          });
+    write_file_atomically(directory + "tip_spectrum_magnitudes.csv",
+                          [&](std::ostream &out) {
+                            out << Analysis::spectrum_csv(analysis);
+                          });
     pcout << "Spectral analysis of the tip motion (" << directory
           << "tip_spectrum.csv):\n"
           << Analysis::spectral_summary(analysis) << std::flush;
@@ -277,8 +354,27 @@ namespace SoftRobot
       statistics.sections["Output (writing thread)"] = background;
     for (auto &[name, seconds] : statistics.sections)
       seconds = Utilities::MPI::max(seconds, mpi_communicator);
-    if (Utilities::MPI::this_mpi_process(mpi_communicator) != 0)
-      return;
+    std::string error;
+    if (Utilities::MPI::this_mpi_process(mpi_communicator) == 0)
+      try
+        {
+          fill_and_write_statistics(statistics, wall_time);
+        }
+      catch (WriteFailure &failure)
+        {
+          error = failure.what();
+        }
+    fail_everywhere(error, mpi_communicator);
+  }
+
+
+
+  // The part of the statistics that process 0 fills in, and the file.
+  template <int dim>
+  void
+  SoftRobotDynamics<dim>::fill_and_write_statistics(RunStatistics &statistics,
+                                                    const double wall_time) const
+  {
 
     statistics.dimension       = dim;
     statistics.cells           = triangulation.n_global_active_cells();
@@ -323,10 +419,19 @@ namespace SoftRobot
           << std::endl;
     computing_timer.print_summary();
     write_run_statistics(wall_time);
+    trajectory.close();
     if (parameters.spectral_analysis)
       {
-        trajectory.close();
-        analyse_trajectory();
+        std::string error;
+        try
+          {
+            analyse_trajectory();
+          }
+        catch (WriteFailure &failure)
+          {
+            error = failure.what();
+          }
+        fail_everywhere(error, mpi_communicator);
       }
   }
 
@@ -338,11 +443,17 @@ namespace SoftRobot
   template void SoftRobotDynamics<dim>::open_trajectory();                \
   template void SoftRobotDynamics<dim>::write_trajectory_row();           \
   template void SoftRobotDynamics<dim>::output_results();                 \
-  template std::unique_ptr<DataOut<dim>>                                   \
+  template std::pair<std::unique_ptr<DataOut<dim>>, CellData>             \
   SoftRobotDynamics<dim>::field_data() const;                              \
+  template void SoftRobotDynamics<dim>::write_fields();                    \
+  template void SoftRobotDynamics<dim>::write_final_fields();              \
+  template std::vector<std::pair<std::string, double>>                     \
+  SoftRobotDynamics<dim>::state_values() const;                            \
   template void SoftRobotDynamics<dim>::analyse_trajectory() const;       \
   template void SoftRobotDynamics<dim>::write_run_statistics(const double) \
     const;                                                                 \
+  template void SoftRobotDynamics<dim>::fill_and_write_statistics(        \
+    RunStatistics &, const double) const;                                  \
   template void SoftRobotDynamics<dim>::finish_run(const double);
   SOFT_ROBOT_FOR_EACH_DIMENSION(SOFT_ROBOT_INSTANTIATE)
 #undef SOFT_ROBOT_INSTANTIATE

@@ -3,12 +3,12 @@
 // See include/output/run_statistics.h. The JSON text comes from
 // nlohmann::json, with the keys in the order below.
 
+#include <cstdio>
 #include <deal.II/base/exceptions.h>
+#include <fstream>
 #include <nlohmann/json.hpp>
 #include <output/run_statistics.h>
-
-#include <cstdio>
-#include <fstream>
+#include <output/safe_file.h>
 
 namespace SoftRobot
 {
@@ -40,17 +40,8 @@ namespace SoftRobot
     for (const auto &[name, seconds] : sections)
       json["sections"][name] = seconds;
 
-    const std::string temporary = file_name + ".tmp";
-    {
-      std::ofstream file(temporary);
-      file << json.dump(2) << '\n';
-      file.close();
-      AssertThrow(file,
-                  ExcMessage("Cannot write the run statistics '" + temporary +
-                             "'."));
-    }
-    AssertThrow(std::rename(temporary.c_str(), file_name.c_str()) == 0,
-                ExcMessage("Cannot rename '" + temporary + "' to '" +
-                           file_name + "'."));
+    write_file_atomically(file_name, [&](std::ostream &out) {
+      out << json.dump(2) << '\n';
+    });
   }
 } // namespace SoftRobot

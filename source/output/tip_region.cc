@@ -23,14 +23,15 @@ namespace SoftRobot
   {
     const FiniteElement<dim> &fe = dof_handler.get_fe();
     weights.assign(dim,
-                   TrilinosWrappers::MPI::Vector(dof_handler.locally_owned_dofs(),
-                                                 mpi_communicator));
-    double                      weight        = 0.;
-    const unsigned int          id            = parameters.tip_region_id;
-    const unsigned int          dofs_per_cell = fe.n_dofs_per_cell();
-    std::vector<Vector<double>> cell_weights(dim, Vector<double>(dofs_per_cell));
+                   TrilinosWrappers::MPI::Vector(
+                     dof_handler.locally_owned_dofs(), mpi_communicator));
+    double                               weight = 0.;
+    const unsigned int                   id     = parameters.tip_region_id;
+    const unsigned int                   dofs_per_cell = fe.n_dofs_per_cell();
+    std::vector<Vector<double>>          cell_weights(dim,
+                                             Vector<double>(dofs_per_cell));
     std::vector<types::global_dof_index> dof_indices(dofs_per_cell);
-    const auto section = [&](const auto &cell) {
+    const auto                           section = [&](const auto &cell) {
       return parameters.by_id.at(cell->material_id()).section;
     };
     // Adds omega N_i(q) JxW to the weights of a cell.
