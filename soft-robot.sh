@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: LGPL-2.1-or-later
 # The two commands of the README, for a fresh Debian 12 machine (as root):
 #
 #   ./soft-robot.sh demo       install what is missing, build in Release, run

@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
+
 // @sect3{Tests of the damping laws}
 //
 // The damping must come from the deformation only: the Kelvin-Voigt stress

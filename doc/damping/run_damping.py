@@ -1,4 +1,5 @@
 #!/usr/bin/python3
+# SPDX-License-Identifier: LGPL-2.1-or-later
 """The damping of the swinging actuator against the time step: does the
 swing's frequency and damping converge as the step shrinks, and what does
 the start-up of a release do? Runs the planar and the spherical pendulum of

@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: LGPL-2.1-or-later
 """The speed benchmark: runs named cases with the Release build of
 soft-robot, one at a time, and writes doc/performance.md.
 

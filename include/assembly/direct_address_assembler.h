@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
+
 // @sect3{The fast global addition: precomputed addresses}
 //
 // SystemAssembler adds a cell matrix through Epetra's SumIntoGlobalValues,

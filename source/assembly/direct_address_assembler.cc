@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
+
 // @sect3{The fast global addition: precomputed addresses}
 //
 // See include/assembly/direct_address_assembler.h.
