@@ -487,6 +487,9 @@ namespace
     parameters.write_vtu         = false;
     parameters.spectral_analysis = false;
     parameters.progress_interval = 0;
+    // The directory holds the previous trial's run.
+    parameters.existing_output =
+      Parameters::Output::ExistingOutput::replace;
     {
       SoftRobotDynamics<3> model(parameters, MPI_COMM_WORLD);
       model.run();

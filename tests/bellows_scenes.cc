@@ -97,7 +97,7 @@ TEST(BellowsScenes, EveryScenePairsItsSiliconeWithTheLibraryData)
           const bool vertical = name.find("vertical") != std::string::npos ||
                                 name.find("column") != std::string::npos;
           EXPECT_DOUBLE_EQ(parameters.end_time, vertical ? 5.25 : 6.);
-          EXPECT_DOUBLE_EQ(parameters.time_step, 0.01);
+          EXPECT_DOUBLE_EQ(parameters.time_step, 0.005);
           EXPECT_EQ(parameters.output_directory, "output/" + name);
           if (parameters.dimension < 3)
             {

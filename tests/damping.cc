@@ -471,7 +471,13 @@ TYPED_TEST(DampingTest, SpinningBodyKeepsItsRotation)
   constexpr int dim = TypeParam::value;
   if (dim == 1)
     GTEST_SKIP() << "a 1D body cannot rotate";
-  for (const unsigned int degree : {1U, 2U})
+  // P2 in 2D only: the 3D P2 cube takes ten minutes in the Debug build of
+  // the tests. Run by hand, it gives the differences of P1 to two digits
+  // (1.6e-4 and 5.0e-6 in the kinetic energy, 8.1e-5 and 2.5e-6 in L_z).
+  const std::vector<unsigned int> degrees =
+    (dim == 2) ? std::vector<unsigned int>{1, 2} :
+                 std::vector<unsigned int>{1};
+  for (const unsigned int degree : degrees)
     {
       std::array<double, 2> energy_difference, momentum_difference;
       for (unsigned int k = 0; k < 2; ++k)
