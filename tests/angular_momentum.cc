@@ -11,7 +11,7 @@
 // the computed value must agree to round-off, with both degrees, on
 // distorted tetrahedra and on undistorted hexahedra. (On distorted
 // hexahedra the Jacobian of the trilinear map varies and the mass
-// quadrature is no longer exact: the error there was 1e-5.) The test is
+// quadrature is no longer exact: the error there is about 1e-5.) The test is
 // typed on 2D and 3D only: the 1D column cannot rotate, and its angular
 // momentum is zero by construction, so a 1D case would compare 0 with 0.
 

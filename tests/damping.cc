@@ -288,8 +288,9 @@ TYPED_TEST(DampingTest, RigidMotionsAreNotDamped)
 // the velocity follows the displacement with c_v = 40, as in a time step,
 // so that both parts of the tangent count. Tested for the Kelvin-Voigt
 // stress with the full (non-symmetric) tangent, the drag on the face x = L
-// and the mass-proportional damping, each alone, in every dimension,
-// element and formulation; tolerance 1e-6. (The drag needs a large air
+// and the mass-proportional damping, each alone, in every dimension, the
+// first with every element and formulation, the other two on linear
+// hexahedra and quadratic simplices; tolerance 1e-6. (The drag needs a large air
 // density to be of the size of the other forces at these speeds.)
 TYPED_TEST(DampingTest, TangentIsTheDerivativeOfTheForces)
 {
@@ -301,6 +302,10 @@ TYPED_TEST(DampingTest, TangentIsTheDerivativeOfTheForces)
       for (const bool simplices : {false, true})
         {
           if (simplices && dim == 1)
+            continue;
+          // The drag and the mass damping on two discretizations only.
+          if (law != "Kelvin-Voigt" && dim > 1 &&
+              (degree == 1) == simplices)
             continue;
           std::vector<std::string> formulations = {"displacement"};
           if (dim == 3 && law == "Kelvin-Voigt")
@@ -373,7 +378,7 @@ namespace
   };
 
   // A free square (2D) or cube (3D) of side 20 mm centred at the origin
-  // (2 cells per side with p = 1, one with p = 2), the silicone of the
+  // (one cell, or in 2D with p = 1 two cells per side), the silicone of the
   // issue that found the lagged damping's defect (mu = 116 kPa, kappa = 100
   // mu, rho = 1.2e-6 kg/mm^3), set spinning about z at Omega = 10 rad/s as a
   // rigid body, without gravity, for the given revolutions.
@@ -387,7 +392,7 @@ namespace
        const double       revolutions)
   {
     const double       Omega = 10., T = 2. * M_PI / Omega;
-    const unsigned int n     = (degree == 1) ? 2 : 1;
+    const unsigned int n     = (dim == 2 && degree == 1) ? 2 : 1;
     std::ostringstream sections;
     sections
       << "subsection Geometry\n  set Generator = subdivided_hyper_rectangle\n"
@@ -510,15 +515,15 @@ TYPED_TEST(DampingTest, SpinningBodyKeepsItsRotation)
 // -\alpha(1+\alpha)^2(\Omega\Delta t)^3/8$ to leading order (see
 // HHTStepper), and for the rotation of a stiff body, which the elastic
 // forces keep at its radius, the energy goes out of the angular velocity.
-// The loss over nine revolutions (after the first, which holds the start-up
-// of the centrifugal stretch) must therefore fall with the third power of
-// the step: halving it divides the loss of kinetic energy and of angular
-// momentum by 8, within 25 % for the higher-order terms. At $\Omega\Delta
-// t = 0.1$ the kinetic energy falls by 3.6e-3 over the nine revolutions
-// and the angular momentum by half of that, as for a rigid body that slows
-// down ($T \propto \Omega^2$, $L \propto\Omega$); that is 1.8 times what
-// $\bar\xi$ of a free oscillation at $\Omega$ would take, $1 -
-// \exp(-36\pi\bar\xi) = 2.0\cdot10^{-3}$ (the radial stiffness of the
+// The loss over three revolutions (after the first, which holds the
+// start-up of the centrifugal stretch) must therefore fall with the third
+// power of the step: halving it divides the loss of kinetic energy and of
+// angular momentum by 8, within 25 % for the higher-order terms. At
+// $\Omega\Delta t = 0.1$ the kinetic energy falls by 1.2e-3 over the three
+// revolutions and the angular momentum by half of that, as for a rigid
+// body that slows down ($T \propto \Omega^2$, $L \propto\Omega$); that is
+// 1.8 times what $\bar\xi$ of a free oscillation at $\Omega$ would take,
+// $1 - \exp(-12\pi\bar\xi) = 6.6\cdot10^{-4}$ (the radial stiffness of the
 // body makes the rotation no free oscillation); the test allows up to 2.5
 // times that at $\Omega\Delta t = 0.1$. (The trapezoidal rule, alpha = 0,
 // conserves energy for linear problems but is unstable for this one; see
@@ -533,14 +538,14 @@ TYPED_TEST(DampingTest, UndampedSpinDecaysAtTheAlgorithmicRate)
   for (unsigned int k = 0; k < 2; ++k)
     {
       const SpinResult run =
-        spin<dim>(0., "Kelvin-Voigt", 1, k == 0 ? 0.01 : 0.005, alpha, 10.);
+        spin<dim>(0., "Kelvin-Voigt", 1, k == 0 ? 0.01 : 0.005, alpha, 4.);
       energy_loss[k]   = 1. - run.kinetic / run.kinetic_1;
       momentum_loss[k] = 1. - run.angular_momentum / run.angular_momentum_1;
     }
   const double xi =
     -alpha * (1. + alpha) * (1. + alpha) * std::pow(0.1, 3) / 8.;
-  const double free_oscillation = 1. - std::exp(-36. * M_PI * xi);
-  std::cout << dim << "D: kinetic energy lost in revolutions 2-10 "
+  const double free_oscillation = 1. - std::exp(-12. * M_PI * xi);
+  std::cout << dim << "D: kinetic energy lost in revolutions 2-4 "
             << energy_loss[0] << " (Omega dt = 0.1), " << energy_loss[1]
             << " (0.05); angular momentum " << momentum_loss[0] << ", "
             << momentum_loss[1] << "; free oscillation at Omega dt = 0.1 "
@@ -557,7 +562,8 @@ TYPED_TEST(DampingTest, UndampedSpinDecaysAtTheAlgorithmicRate)
 // @sect4{A rigid translation loses nothing}
 //
 // A free body moving at constant velocity, with the Kelvin-Voigt damping
-// (zeta = 0.02 s): no strain rate, no damping force; the scheme moves it
+// (zeta = 0.02 s) for five steps: no strain rate, no damping force; the
+// scheme moves it
 // exactly (its acceleration stays zero), so the kinetic energy is constant
 // and the damping dissipates nothing, to round-off.
 TYPED_TEST(DampingTest, RigidTranslationLosesNothing)
@@ -566,9 +572,9 @@ TYPED_TEST(DampingTest, RigidTranslationLosesNothing)
   std::ostringstream more;
   more << "subsection Initial conditions\n  set Velocity = 1"
        << (dim > 1 ? "; 0.5" : "") << (dim > 2 ? "; -0.3" : "")
-       << "\nend\nsubsection Time integration\n  set End time = 0.2\n"
+       << "\nend\nsubsection Time integration\n  set End time = 0.05\n"
           "  set Time step = 0.01\nend\n";
-  Simulation<dim> body(read(box(dim, false, 2, "displacement", 0.02,
+  Simulation<dim> body(read(box(dim, false, 1, "displacement", 0.02,
                                 "Kelvin-Voigt", false, more.str())),
                        MPI_COMM_WORLD);
   body.make_grid();

@@ -1,8 +1,8 @@
 // @sect3{Tests of the accelerated modified Newton method}
 //
 // The time steps' modified Newton method keeps one matrix per step and
-// speeds up its iterations in two ways (see SoftRobotDynamics::newton_solve
-// and prepare_step_tangent): the matrix is built from the stiffness
+// speeds up its iterations in two ways (see NewtonSolver and
+// SoftRobotDynamics::prepare_step_tangent): the matrix is built from the stiffness
 // extrapolated from the last two converged states, and Anderson
 // acceleration combines the last iterates. Neither changes the residual,
 // so all variants must converge to the same motion as Newton's method

@@ -43,7 +43,7 @@ namespace SoftRobot
     // KelvinVoigtDamping).
     bool store_viscosity = false;
     // $\partial\mathbf v/\partial\mathbf u$ of the time integrator
-    // ($\gamma/(eta\Delta t)$ for the HHT step, zero for the tangent of a
+    // ($\gamma/(\beta\Delta t)$ for the HHT step, zero for the tangent of a
     // state): the matrix is the derivative of all forces, velocity-dependent
     // ones included, by the displacement.
     double velocity_coefficient = 0.;

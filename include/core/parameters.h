@@ -84,6 +84,8 @@ namespace SoftRobot
         mean_dilatation
       };
       VolumetricFormulation volumetric_formulation;
+      // Whether the global addition uses DirectAddressAssembler.
+      bool direct_addresses;
 
       static void
       declare_parameters(ParameterHandler &prm);

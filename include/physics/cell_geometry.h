@@ -4,8 +4,8 @@
 // quadrature weights refer to the undeformed mesh and never change.
 // CellGeometry computes them once for the locally owned cells, so that the
 // integrals over the cells, which run in every Newton iteration, do no
-// FEValues::reinit() (for linear tetrahedra that was a third of their
-// time). A vector-valued shape function $\mathbf N_i = \varphi_i\mathbf
+// FEValues::reinit(), which for linear tetrahedra would take about a third
+// of their time. A vector-valued shape function $\mathbf N_i = \varphi_i\mathbf
 // e_{c_i}$ of the FESystem has one nonzero component $c_i$; only the
 // gradient of $\varphi_i$ is stored.
 //

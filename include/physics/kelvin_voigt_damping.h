@@ -12,7 +12,7 @@
 // body now, and every rotation is damped by an amount that grows with
 // $\Omega^2\Delta t$ (a free cube spinning at 10 rad/s came to rest within
 // one revolution). This class replaces the matrix by a stress.
-//
+
 // @sect4{The viscous stress}
 //
 // The body is a Kelvin-Voigt solid: besides the elastic stress it carries a
@@ -60,7 +60,7 @@
 // exact in closed form (below), and it keeps the eigenvalue decomposition
 // behind $\mathcal C^+$, which has no useful derivative where an eigenvalue
 // changes sign, out of Newton's method.
-//
+
 // @sect4{The tangent}
 //
 // With Newmark's $\partial\mathbf v_{n+1}/\partial\mathbf u_{n+1} = c_v =
@@ -78,7 +78,7 @@
 // symmetric; it is of the order of the strain rate times the step relative
 // to the first and is left out when the linear solver needs a symmetric
 // matrix (CG), which only makes Newton's method slightly inexact.
-//
+
 // @sect4{The mean-dilatation formulation}
 //
 // There the volumetric energy acts on each cell's mean volume ratio

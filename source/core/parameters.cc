@@ -8,6 +8,13 @@
 #include <limits>
 #include <sstream>
 
+// @sect3{Run-time parameters: declarations and parsing}
+//
+// Each structure of include/core/parameters.h declares its subsection's
+// entries -- with the pattern that checks the allowed values and the
+// documentation that parameters/default.prm shows -- and parses them into
+// its fields, options into enum values, once.
+
 namespace SoftRobot
 {
   namespace Parameters
@@ -180,6 +187,16 @@ namespace SoftRobot
         "does not lock, with linear tetrahedra it is the same as "
         "'displacement'. The reduced 1D and 2D models are incompressible by "
         "construction and allow 'displacement' only.");
+      prm.declare_entry(
+        "Direct addresses",
+        "true",
+        Patterns::Bool(),
+        "How the cell matrices and vectors are added into the global ones: "
+        "true, at addresses in Trilinos' value arrays computed once (the "
+        "fast path, used where all constraints are homogeneous); false, "
+        "through AffineConstraints::distribute_local_to_global() (the "
+        "reference, slower; tests/system_assembler.cc checks that both give "
+        "the same system to round-off).");
       prm.leave_subsection();
     }
 
@@ -193,6 +210,7 @@ namespace SoftRobot
         (prm.get("Volumetric formulation") == "mean dilatation") ?
           VolumetricFormulation::mean_dilatation :
           VolumetricFormulation::displacement;
+      direct_addresses = prm.get_bool("Direct addresses");
       prm.leave_subsection();
     }
 

@@ -329,15 +329,22 @@ namespace SoftRobot
           }
         pcout << pneumatics->description() << std::endl;
       }
-    assembler = DirectAddressAssembler<dim>::create(
-      cell_geometry,
-      constraints,
-      locally_owned_dofs,
-      locally_relevant_dofs,
-      system_matrix,
-      damping_matrices ? &damping_matrix : nullptr,
-      current.u,
-      mpi_communicator);
+    if (parameters.direct_addresses)
+      assembler = DirectAddressAssembler<dim>::create(
+        cell_geometry,
+        constraints,
+        locally_owned_dofs,
+        locally_relevant_dofs,
+        system_matrix,
+        damping_matrices ? &damping_matrix : nullptr,
+        current.u,
+        mpi_communicator);
+    else
+      assembler = std::make_unique<SystemAssembler<dim>>(cell_geometry,
+                                                         constraints,
+                                                         locally_owned_dofs,
+                                                         locally_relevant_dofs,
+                                                         mpi_communicator);
     linear_solver.set_near_null_space(rigid_body_modes(*mapping, dof_handler));
     tip_region.reinit(parameters,
                       *mapping,

@@ -310,9 +310,8 @@ namespace SoftRobot
                                 std::vector<std::string>(dim, "pressure_force"),
                                 DataOut<dim>::type_dof_data,
                                 vector_field);
-    // zlib's fastest level: deal.II's default, the best compression, took a
-    // seventh of the headline case's run time for files about a third
-    // smaller (doc/performance_discussion.md).
+    // zlib's fastest level: deal.II's default, the best compression, takes
+    // twice the time for files of the same size (doc/performance_discussion.md).
     DataOutBase::VtkFlags flags;
     flags.time              = current.time;
     flags.cycle             = counters.steps;

@@ -33,8 +33,7 @@ namespace SoftRobot
   // caches intermediate values, `CacheFad`). Their derivative arrays live
   // on the stack, which makes the evaluation about fifteen times faster
   // than with the dynamically sized numbers of deal.II's
-  // Differentiation::AD helper (1.3 against 19 microseconds per 3D point on
-  // the development machine); evaluate_with_ad_helper() keeps the helper
+  // Differentiation::AD helper; evaluate_with_ad_helper() keeps the helper
   // route, and the tests check that both agree.
   //
   // Differentiating at the cell level instead (the energy functional of all

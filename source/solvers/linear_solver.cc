@@ -91,7 +91,7 @@ namespace SoftRobot
   // @sect4{LinearSolver::prepare}
   //
   // Every call counts as a preparation, also one that fails: the statistics
-  // count the factorizations attempted, as the program always did.
+  // count the factorizations attempted, the failed ones included.
   void
   LinearSolver::prepare(const TrilinosWrappers::SparseMatrix &matrix)
   {
@@ -229,8 +229,8 @@ namespace SoftRobot
   // hierarchy is therefore recomputed on the aggregates it has: the
   // prolongators, coarse matrices, smoothers and the coarse factorization
   // come from the new matrix, and only the aggregation is skipped, which on
-  // the bellows takes a sixth to a quarter off a set-up's time
-  // (doc/performance_discussion.md, item 25).
+  // the bellows takes a sixth to a quarter off a set-up's time (measured in
+  // doc/performance_discussion.md).
   void
   LinearSolver::prepare_multigrid(const TrilinosWrappers::SparseMatrix &matrix)
   {

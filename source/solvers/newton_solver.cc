@@ -315,11 +315,9 @@ namespace SoftRobot
   //
   // A direction from an old matrix is not halved: if its full step does not
   // lower the residual, the matrix no longer describes the body well
-  // enough, and the tangent is rebuilt at once. (Halving it cost up to six
-  // residual assemblies; in the planar pendulum it happened in about every
-  // third step, and a quarter of these searches failed altogether. Without
-  // them the scene needs 7 % fewer residual assemblies, and slightly fewer
-  // iterations and factorizations.)
+  // enough, and the tangent is rebuilt at once. (Halving it would cost up to
+  // six residual assemblies, and with an old matrix such a search often ends
+  // without an admissible step.)
   //
   // In Newton's method proper every trial assembles the tangent, so that
   // the accepted one leaves its own for the next iteration.
