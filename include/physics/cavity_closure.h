@@ -22,7 +22,9 @@
 // - the planes with $j \neq k$ are parallel to $\mathbf e_k$ and add
 //   nothing, and
 // - all open edges on planes normal to $\mathbf e_k$ lie in one plane,
-//   $x_k = c$, which adds nothing either.
+//   $x_k = c$, which adds nothing either (an edge of a clamped face lies
+//   in several coordinate planes; the one normal to $\mathbf e_k$ is taken
+//   for it, the plane of the opening).
 // For the bellows (quarter model) that is $k = x$ and $c = -15.25$, the
 // plane of the clamped base, which holds the inlet's rim; the symmetry
 // planes $y = 0$ and $z = 0$ are parallel to $x$. A cavity without open

@@ -98,10 +98,10 @@ namespace SoftRobot
                          const double                         pressure,
                          TrilinosWrappers::MPI::Vector       &gradient);
 
-    // The pressure at t = 0 before the gas is sealed: the prescribed
-    // pressure at t = 0, or the gas's Initial pressure.
+    // The pressure of a static equilibrium at the time t: the prescribed
+    // pressure at t, or, before the gas is sealed, its Initial pressure.
     double
-    initial_pressure() const;
+    initial_pressure(const double time = 0.) const;
 
     // Gas: seals the cavity with the volume at the displacement u (the
     // initial state); an input error if that volume is not positive.

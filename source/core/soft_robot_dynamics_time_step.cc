@@ -308,9 +308,10 @@ namespace SoftRobot
                                                  mpi_communicator);
     assemble_external_force(time, 1., traction_force);
     traction_force -= inertia.gravity_force;
-    // The pneumatic pressure at t = 0 rises with the tractions; a closed
-    // cavity's load has the potential $-pV$, an open surface's none.
-    const double pressure = pneumatics ? pneumatics->initial_pressure() : 0.;
+    // The pneumatic pressure of the time t rises with the tractions; a
+    // closed cavity's load has the potential $-pV$, an open surface's none.
+    const double pressure =
+      pneumatics ? pneumatics->initial_pressure(time) : 0.;
     const bool   has_gravity  = inertia.gravity_force.l2_norm() > 0.;
     const bool   has_traction = traction_force.l2_norm() > 0. || pressure != 0.;
     double       pressure_factor = 0.;

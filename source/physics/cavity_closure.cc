@@ -164,15 +164,15 @@ namespace SoftRobot
     const char *axis_name = "xyz";
     for (unsigned int k = 0; k < dim; ++k)
       {
+        // An edge that lies in a plane normal to the axis is closed by it
+        // (a clamped edge lies in several coordinate planes: the base's,
+        // normal to the axis, is the one that holds the opening); the
+        // others by a plane parallel to the axis.
         std::set<double> origins;
         for (const auto &candidates : planes)
-          {
-            bool parallel = false;
-            for (const auto &[j, value] : candidates)
-              parallel = parallel || (j != k);
-            if (!parallel)
-              origins.insert(candidates[0].second);
-          }
+          for (const auto &[j, value] : candidates)
+            if (j == k)
+              origins.insert(value);
         // one plane normal to the axis, within the tolerance
         if (!origins.empty() &&
             *origins.rbegin() - *origins.begin() > tolerance)
@@ -184,7 +184,7 @@ namespace SoftRobot
           {
             std::pair<unsigned int, double> chosen = candidates[0];
             for (const auto &plane : candidates)
-              if (plane.first != k)
+              if (plane.first == k)
                 chosen = plane;
             used.insert({chosen.first,
                          std::round(chosen.second / tolerance) * tolerance});

@@ -163,9 +163,9 @@ namespace SoftRobot
 
   template <int dim>
   double
-  PneumaticLoad<dim>::initial_pressure() const
+  PneumaticLoad<dim>::initial_pressure(const double time) const
   {
-    return gas ? parameters.initial_gas_pressure : prescribed->value(0.);
+    return gas ? parameters.initial_gas_pressure : prescribed->value(time);
   }
 
 

@@ -35,7 +35,7 @@ namespace SoftRobot
   {
     if (!active())
       return 0;
-    z.reinit(g, /*omit_zeroing_entries=*/true);
+    z.reinit(g); // a zero initial guess for the iterative solvers
     const unsigned int iterations = solver.solve(g, z);
     denominator                   = 1. + coefficient * (g * z);
     if (!(std::abs(denominator) > 1e-14))
