@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
+
 // @sect3{How a cavity is closed, and along which axis its volume is taken}
 //
 // A gas cavity needs its volume, and the volume of a region is an integral

@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
+
 // @sect3{A pressure on the deformed surface: the follower load}
 //
 // A gas pushes on the wall that holds it with the pressure $p$ on every
@@ -22,6 +24,7 @@
 // (1D) shrinks as it stretches; their Nanson factor is $\mathbf F^{-T}$
 // alone, and $dA$ carries the Section.
 //
+
 // @sect4{The load stiffness}
 //
 // The load depends on the displacement through $\mathbf F$ on the face.
@@ -52,9 +55,10 @@
 // part $\tfrac12(\mathbf K_p + \mathbf K_p^T)$ of each face's matrix is
 // assembled instead. For a closed surface the sum of the symmetric parts is
 // the exact tangent (the sum is symmetric already), so nothing is lost; on
-// a surface with free edges Newton's method then converges linearly
-// (doc/pneumatics_discussion.md measures it).
+// a surface with free edges Newton's method then converges linearly (a
+// rate not measured yet).
 //
+
 // @sect4{The enclosed volume}
 //
 // For a gas cavity the same faces give the volume the gas fills, by the
@@ -79,6 +83,7 @@
 // reduced models' factor $\mathbf F^{-T}$ is not polynomial and bounds no
 // volume, so a gas cavity in 1D and 2D needs the end load below.
 //
+
 // @sect4{The reduced models' end load}
 //
 // The 1D column and the 2D strip of the bellows have no cavity. The
@@ -94,8 +99,10 @@
 // \int (A_\text{eq}/A_\text{end})\,\mathbf u\cdot\mathbf N\,dA$, the
 // cavity's growth (the Dead volume holds the cavity's own volume). The
 // load is conservative and has no stiffness of its own.
-// doc/pneumatics.md derives $A_\text{eq}$ and compares the reduced models'
-// pressure-elongation curves with the 3D actuator's.
+// doc/pneumatics.md gives $A_\text{eq} = dV/d\delta$ from the 3D
+// actuator's static pressure-elongation curve (the cavity volume against
+// the tip displacement). The reduced scenes do not use it yet: their
+// pressure-elongation curves are not compared with the 3D one.
 //
 // Implemented in source/physics/follower_pressure.cc.
 

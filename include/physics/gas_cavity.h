@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
+
 // @sect3{A gas enclosed in the cavity}
 //
 // Instead of a prescribed pressure the cavity may hold a gas: sealed at $t

@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
+
 // @sect3{A pressure as a function of time}
 //
 // The pneumatic actuator is driven by the pressure its valve or pump sets:

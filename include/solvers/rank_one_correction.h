@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
+
 // @sect3{Solving with a sparse matrix plus a rank-one term}
 //
 // The tangent of a gas cavity is the sparse matrix $\mathbf S$ of the body

@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
+
 // @sect3{How a cavity is closed}
 //
 // See include/physics/cavity_closure.h.

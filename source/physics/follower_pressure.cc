@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
+
 // @sect3{A pressure on the deformed surface: the follower load}
 //
 // See include/physics/follower_pressure.h for the formulas.

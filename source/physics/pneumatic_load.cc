@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
+
 // @sect3{The pneumatic load: pressure, cavity and gas together}
 //
 // See include/physics/pneumatic_load.h.
