@@ -19,19 +19,18 @@
 
 #include "solver_test_tools.h"
 
+#include <cmath>
 #include <core/soft_robot_dynamics.h>
+#include <cstdlib>
 #include <deal.II/base/timer.h>
 #include <deal.II/dofs/dof_tools.h>
 #include <deal.II/grid/grid_in.h>
 #include <deal.II/lac/lapack_full_matrix.h>
+#include <fstream>
 #include <gtest/gtest.h>
+#include <random>
 #include <solvers/linear_solver.h>
 #include <solvers/rank_one_correction.h>
-
-#include <cmath>
-#include <cstdlib>
-#include <fstream>
-#include <random>
 
 using namespace dealii;
 using namespace SoftRobot;
@@ -69,12 +68,12 @@ namespace
   TrilinosWrappers::MPI::Vector
   linear_map(const SimulatorAccess<dim> &body, const Tensor<2, dim> &A)
   {
-    TrilinosWrappers::MPI::Vector u(body.displacement());
+    TrilinosWrappers::MPI::Vector                 u(body.displacement());
     std::map<types::global_dof_index, Point<dim>> support;
     DoFTools::map_dofs_to_support_points(body.get_mapping(),
                                          body.get_dof_handler(),
                                          support);
-    const FiniteElement<dim> &fe = body.get_dof_handler().get_fe();
+    const FiniteElement<dim>            &fe = body.get_dof_handler().get_fe();
     std::vector<types::global_dof_index> dofs(fe.n_dofs_per_cell());
     for (const auto &cell : body.get_dof_handler().active_cell_iterators())
       {
@@ -98,8 +97,8 @@ namespace
   {
     TrilinosWrappers::MPI::Vector g(u);
     const auto                    evaluation =
-      gas ? body.get_pneumatics().evaluate(u, 0., g) :
-            body.get_pneumatics().evaluate_at_pressure(u, p, g);
+      gas ? body.get_pneumatics().evaluate(u, 0., g)
+                             : body.get_pneumatics().evaluate_at_pressure(u, p, g);
     g *= evaluation.pressure;
     return g;
   }
@@ -190,8 +189,8 @@ TYPED_TEST(FollowerPressureTest, LoadStiffnessIsTheDerivativeOfTheLoad)
   body.make_grid();
   body.setup_system();
 
-  const double                        p = 2.;
-  const TrilinosWrappers::MPI::Vector u = random_vector(body, 0.05, 1);
+  const double                        p         = 2.;
+  const TrilinosWrappers::MPI::Vector u         = random_vector(body, 0.05, 1);
   const TrilinosWrappers::MPI::Vector direction = random_vector(body, 1., 2);
   TrilinosWrappers::MPI::Vector       with_pressure(u), without(u), load(u);
 
@@ -239,11 +238,17 @@ TYPED_TEST(FollowerPressureTest, LoadStiffnessIsTheDerivativeOfTheLoad)
 // the time-step test below.)
 TEST(GasCavity, TangentWithRankOneTermIsTheDerivative)
 {
-  const Parameters::AllParameters parameters = read(
-    octant_shell(10., 15., 2, 0, 10., 1000., "  set Pressure model = gas\n"
-                                             "  set Initial pressure = 20\n"
-                                             "  set Gas law exponent = 1.4\n"
-                                             "  set Dead volume = 2000\n"));
+  const Parameters::AllParameters parameters =
+    read(octant_shell(10.,
+                      15.,
+                      2,
+                      0,
+                      10.,
+                      1000.,
+                      "  set Pressure model = gas\n"
+                      "  set Initial pressure = 20\n"
+                      "  set Gas law exponent = 1.4\n"
+                      "  set Dead volume = 2000\n"));
   Simulation<3> body(parameters, MPI_COMM_WORLD);
   body.make_grid();
   body.setup_system();
@@ -281,8 +286,9 @@ TEST(GasCavity, TangentWithRankOneTermIsTheDerivative)
               1e-12 * evaluation.stiffness);
   const double error         = relative_difference(product, difference);
   const double without_error = relative_difference(sparse_part, difference);
-  std::cout << "p = " << evaluation.pressure << " kPa, V = "
-            << evaluation.volume << " mm^3, s = " << evaluation.stiffness
+  std::cout << "p = " << evaluation.pressure
+            << " kPa, V = " << evaluation.volume
+            << " mm^3, s = " << evaluation.stiffness
             << "; relative difference from the central difference " << error
             << ", without the rank-one term " << without_error << std::endl;
   EXPECT_LT(error, 1e-7);
@@ -324,7 +330,9 @@ TYPED_TEST(RankOneCorrectionTest, ShermanMorrisonEqualsTheDirectSolve)
   const TrilinosWrappers::MPI::Vector rhs = random_vector(body, 1., 6);
   const double c = K.frobenius_norm() / (g * g); // order one against K
 
-  TimerOutput  timer(MPI_COMM_WORLD, std::cout, TimerOutput::never,
+  TimerOutput  timer(MPI_COMM_WORLD,
+                    std::cout,
+                    TimerOutput::never,
                     TimerOutput::wall_times);
   LinearSolver solver(parameters, 2, MPI_COMM_WORLD, timer);
   solver.prepare(K);
@@ -353,8 +361,8 @@ TYPED_TEST(RankOneCorrectionTest, ShermanMorrisonEqualsTheDirectSolve)
   const double error  = relative_difference(x, reference);
   const double change = relative_difference(y, reference);
   std::cout << dim << "D: " << n << " dofs, Sherman-Morrison against LAPACK "
-            << error << "; the rank-one term changes the solution by "
-            << change << std::endl;
+            << error << "; the rank-one term changes the solution by " << change
+            << std::endl;
   EXPECT_LT(error, 1e-10);
   EXPECT_GT(change, 1e-2);
 }
@@ -391,7 +399,7 @@ namespace
           {
             const auto     face = cell->face(f);
             const Point<3> a = face->vertex(0), b = face->vertex(1),
-                           c = face->vertex(2);
+                           c         = face->vertex(2);
             Tensor<1, 3> area_vector = 0.5 * cross_product_3d(b - a, c - a);
             // the body's outer normal: away from the cell's centre
             if (area_vector * (face->center() - cell->center()) < 0.)
@@ -406,11 +414,11 @@ namespace
                 r_min = std::min(r_min, r), r_max = std::max(r_max, r);
                 x_min = std::min(x_min, v[0]), x_max = std::max(x_max, v[0]);
                 for (const Point<3> &w : {a, b, c})
-                  spread = std::max(
-                    spread,
-                    std::abs(std::remainder(std::atan2(v[2], v[1]) -
-                                              std::atan2(w[2], w[1]),
-                                            2 * numbers::PI)));
+                  spread =
+                    std::max(spread,
+                             std::abs(std::remainder(std::atan2(v[2], v[1]) -
+                                                       std::atan2(w[2], w[1]),
+                                                     2 * numbers::PI)));
               }
             if (x_max - x_min > 1e-9)
               bound += area_vector.norm() * (x_max - x_min) /
@@ -445,9 +453,9 @@ namespace
 
 TEST(CavityVolume, BellowsMeshAgainstTheRevolvedSection)
 {
-  const double reference = 15176.3, round_off = 1e-4, x_base = -15.25;
-  const char  *source    = std::getenv("SOFT_ROBOT_SOURCE_DIR");
-  const std::string root = (source != nullptr) ? source : "..";
+  const double      reference = 15176.3, round_off = 1e-4, x_base = -15.25;
+  const char       *source = std::getenv("SOFT_ROBOT_SOURCE_DIR");
+  const std::string root   = (source != nullptr) ? source : "..";
   for (const auto &[model, fraction] :
        std::vector<std::pair<std::string, double>>{{"quarter", 0.25},
                                                    {"half", 0.5}})
@@ -460,7 +468,7 @@ TEST(CavityVolume, BellowsMeshAgainstTheRevolvedSection)
       body.make_grid();
       body.setup_system();
       TrilinosWrappers::MPI::Vector g(body.displacement());
-      const double volume = body.get_pneumatics()
+      const double                  volume = body.get_pneumatics()
                               .evaluate_at_pressure(body.displacement(), 0., g)
                               .volume;
       Triangulation<3> triangulation;
@@ -470,7 +478,8 @@ TEST(CavityVolume, BellowsMeshAgainstTheRevolvedSection)
         grid_in.read_msh(input);
       }
       const auto [facets, facet_bound] = cavity_facets(triangulation, x_base);
-      const double polyhedron = facets / fraction, bound = facet_bound / fraction;
+      const double polyhedron          = facets / fraction,
+                   bound               = facet_bound / fraction;
       std::cout << model << ": cavity volume " << volume
                 << " mm^3, the polyhedron's " << polyhedron << " (relative "
                 << volume / polyhedron - 1. << "); "
@@ -504,7 +513,7 @@ TEST(CavityVolume, DeformedSphereIsTheEllipsoid)
     {
       const Parameters::AllParameters parameters = read(octant_shell(
         R, 15., 2, refinements, 10., 1000., "  set Pressure = 1\n"));
-      Simulation<3> body(parameters, MPI_COMM_WORLD);
+      Simulation<3>                   body(parameters, MPI_COMM_WORLD);
       body.make_grid();
       body.setup_system();
       PneumaticLoad<3>             &pneumatics = body.get_pneumatics();
@@ -532,17 +541,16 @@ TEST(CavityVolume, DeformedSphereIsTheEllipsoid)
               double cos_theta = 1.;
               for (const unsigned int i : face->vertex_indices())
                 for (const unsigned int j : face->vertex_indices())
-                  cos_theta = std::min(cos_theta,
-                                       face->vertex(i) * face->vertex(j) /
-                                         (R * R));
+                  cos_theta =
+                    std::min(cos_theta,
+                             face->vertex(i) * face->vertex(j) / (R * R));
               deficit += face->measure() * R * (1. - cos_theta);
             }
       const double bound = deficit / (0.125 * sphere);
-      std::cout << "refinements " << refinements << ": V0 = " << V0
-                << " mm^3 (" << 100. * (V0 / sphere - 1.)
-                << " % from the sphere, bound -" << 100. * bound
-                << " %), V/V0 = " << V / V0 << " (exact " << exact_ratio
-                << ")" << std::endl;
+      std::cout << "refinements " << refinements << ": V0 = " << V0 << " mm^3 ("
+                << 100. * (V0 / sphere - 1.) << " % from the sphere, bound -"
+                << 100. * bound << " %), V/V0 = " << V / V0 << " (exact "
+                << exact_ratio << ")" << std::endl;
       EXPECT_NEAR(V / V0, exact_ratio, 1e-12);
       EXPECT_LE(V0, sphere * (1. + 1e-12));
       EXPECT_GE(V0, sphere * (1. - bound));
@@ -574,14 +582,14 @@ TEST(CavityVolume, DeformedSphereIsTheEllipsoid)
 // reaches the compressibility floor.
 TEST(Inflation, ThickWalledNeoHookeanSphere)
 {
-  const double A = 10., B = 15., mu = 10., kappa = 1000. * mu, p = 3.5;
+  const double        A = 10., B = 15., mu = 10., kappa = 1000. * mu, p = 3.5;
   std::vector<double> errors;
   for (const unsigned int refinements : {0u, 1u})
     {
       std::ostringstream pneumatics;
       pneumatics << "  set Pressure = " << p << "\n";
-      Parameters::AllParameters parameters = read(
-        octant_shell(A, B, 2, refinements, mu, kappa, pneumatics.str()));
+      Parameters::AllParameters parameters =
+        read(octant_shell(A, B, 2, refinements, mu, kappa, pneumatics.str()));
       Simulation<3> body(parameters, MPI_COMM_WORLD);
       body.make_grid();
       body.setup_system();
@@ -641,7 +649,8 @@ namespace
                 "  set Pressure model = gas\n  set Equivalent area = 2\n"
                 "  set Dead volume = 200\n"
              << gas << "end\n"
-             << "subsection Initial conditions\n" << initial << "end\n"
+             << "subsection Initial conditions\n"
+             << initial << "end\n"
              << "subsection Time integration\n  set Alpha = " << alpha
              << "\n  set Time step = " << dt << "\n  set End time = 1e-2\nend\n"
              << "subsection Nonlinear solver\n  set Absolute tolerance = 0\n"
@@ -664,13 +673,13 @@ TYPED_TEST(GasCavityInTimeTest, PressureHistoryIndependentOfTimeStep)
   constexpr int dim = TypeParam::value;
   // m0 = P V / (R T) of the 200 mm^3 at 101.325 kPa and 293.15 K; 2 % of
   // it flows in during the first 4 ms.
-  const double m0 = 101.325 * 200. / (287.05e6 * 293.15);
-  const double t_pulse = 4e-3, rate = 2. * 0.02 * m0 / t_pulse;
+  const double       m0      = 101.325 * 200. / (287.05e6 * 293.15);
+  const double       t_pulse = 4e-3, rate = 2. * 0.02 * m0 / t_pulse;
   std::ostringstream gas;
   gas << "  set Gas law exponent = 1.4\n  set Mass inflow rate = t < "
       << t_pulse << " ? " << rate << " * sin(3.14159265358979 * t / " << t_pulse
       << ")^2 : 0\n";
-  const double dt0 = 2e-4;
+  const double                     dt0 = 2e-4;
   std::vector<std::vector<double>> histories;
   for (const unsigned int division : {1u, 2u, 4u})
     {
@@ -717,21 +726,23 @@ TYPED_TEST(GasCavityInTimeTest, EnergyBalanceClosesWithPressureWork)
   const double       c   = std::sqrt(3. * 10. / 1e-6);
   std::ostringstream initial;
   initial << "  set Type = static equilibrium\n  set Velocity = " << 0.05 * c
-          << " * x / 10" << (dim == 1 ? "" : dim == 2 ? "; 0" : "; 0; 0")
+          << " * x / 10"
+          << (dim == 1   ? ""
+              : dim == 2 ? "; 0"
+                         : "; 0; 0")
           << "\n";
   std::vector<double> balances, work_errors;
   double              largest_work = 0.;
   for (const double dt : {2e-4, 1e-4})
     {
-      const Parameters::AllParameters parameters =
-        read(gas_bar(dim, dt, 0., "  set Initial pressure = 5\n",
-                     initial.str()));
+      const Parameters::AllParameters parameters = read(
+        gas_bar(dim, dt, 0., "  set Initial pressure = 5\n", initial.str()));
       Simulation<dim> body(parameters, MPI_COMM_WORLD);
       body.make_grid();
       body.setup_system();
       body.initialize_state();
       const EnergyAccount &energy = body.energies();
-      const double initial_total =
+      const double         initial_total =
         energy.kinetic + energy.strain + energy.gravity_potential;
       const double P0 = 101.325 + body.pressure(), V0 = body.gas_volume();
       double       balance = 0., work_error = 0., largest_energy = 0.;
