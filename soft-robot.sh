@@ -29,8 +29,9 @@
 #                              benchmark and write doc/twisting_column.md
 #   ./soft-robot.sh pneumatics build in Release, run experiment 1 released
 #                              from three vacuum levels and from the hold,
-#                              and the inflation (static curve and ramp,
-#                              hold, vent), and write doc/pneumatics.md
+#                              the inflation (static curve and ramp, hold,
+#                              vent) and a sinusoidal pressure drive, and
+#                              write doc/pneumatics.md
 #
 # Build directories: build-release/ and build-debug/ beside this script.
 set -euo pipefail

@@ -15,7 +15,11 @@ Cases:
 - hold: parameters/bellows/vertical_ds20_3d.prm, the half-weight hold;
 - static_<p>: the static equilibrium of parameters/bellows/
   inflation_ds20_3d.prm at the constant gauge pressure p (0 to 12 kPa);
-- inflation: the scene itself (ramp to 8 kPa in 1 s, hold 1 s, vent).
+- inflation: the scene itself (ramp to 8 kPa in 1 s, hold 1 s, vent);
+- drive_<f>: parameters/bellows/oscillation_ds20_3d.prm, a sinusoidal
+  pressure of 0.2 kPa amplitude at the drive frequency f (Hz), 10 s; the
+  response amplitude is the amplitude of the tip displacement's component
+  at f, fitted by least squares after 6 s (a resonance curve).
 
 What is reported, from each run's tip_trajectory.csv and tip-spectrum (the
 same build) on the vertical (axial) motion: the initial tip displacement,
@@ -51,6 +55,11 @@ QUIET = ["Output/Progress interval=0", "Output/Write VTU=false",
 VACUUM_SCENE = "parameters/bellows/vacuum_release_ds20_3d.prm"
 HOLD_SCENE = "parameters/bellows/vertical_ds20_3d.prm"
 INFLATION_SCENE = "parameters/bellows/inflation_ds20_3d.prm"
+OSCILLATION_SCENE = "parameters/bellows/oscillation_ds20_3d.prm"
+# drive frequencies, Hz: around the natural frequency 3.53 Hz of the
+# vertical mode (the releases below ring at it)
+DRIVES = ("1.77", "3", "3.35", "3.53", "3.71", "4.06", "5.3")
+STEADY = 6.0  # s: the response is fitted after this time
 LEVELS = ("1.5", "2.74", "4")
 PRESSURES = ("0", "2", "4", "6", "8", "10", "12")
 
@@ -63,6 +72,9 @@ CASES += [(f"static_{p}", INFLATION_SCENE, f"static, {p} kPa",
            [f"Pneumatics/Pressure={p}", "Time integration/End time=0.01",
             "Initial conditions/Load steps=8"], "static") for p in PRESSURES]
 CASES.append(("inflation", INFLATION_SCENE, "ramp, hold, vent", [], "inflation"))
+CASES += [(f"drive_{f}", OSCILLATION_SCENE, f"drive at {f} Hz",
+           [f"Loads and constraints/Function constants=hold=1.1397, p_amp=0.2, f_drive={f}"],
+           "drive") for f in DRIVES]
 CASE_NAMES = [c[0] for c in CASES]
 
 
@@ -113,6 +125,19 @@ def analyse(build, output, kind):
     if kind == "release":
         result.update(spectrum(build, trajectory, output))
         result["amplitude"] = float(np.max(data["u_x"]) - np.min(data["u_x"])) / 2.
+    if kind == "drive":
+        t, u = data["t"], data["u_x"]
+        steady = t >= STEADY
+        frequency = float(next(e.split("f_drive=")[1] for e in
+                               next(c for c in CASES if c[0] == output.name)[3]))
+        omega = 2. * np.pi * frequency
+        basis = np.column_stack([np.sin(omega * t[steady]), np.cos(omega * t[steady]),
+                                 np.ones(np.count_nonzero(steady))])
+        coefficients = np.linalg.lstsq(basis, u[steady], rcond=None)[0]
+        result["drive_frequency"] = frequency
+        result["drive_amplitude"] = float(np.hypot(coefficients[0], coefficients[1]))
+        last = t >= t[-1] - 2.
+        result["half_range_last_2s"] = float(np.max(u[last]) - np.min(u[last])) / 2.
     if kind == "inflation":
         t, u, p = data["t"], data["u_x"], data["pressure"]
         result["curve"] = {"t": t[::2].tolist(), "u": u[::2].tolist(),
@@ -163,6 +188,24 @@ def figure(path, by_name):
     ax.legend(fontsize=8, loc="upper left")
     ax.set_title("Bellows (Dragon Skin 20, quarter model): elongation against pressure",
                  fontsize=9)
+    fig.tight_layout()
+    fig.savefig(path, dpi=120)
+    plt.close(fig)
+
+
+def resonance_figure(path, by_name):
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    runs = [by_name.get(f"drive_{f}") for f in DRIVES]
+    points = [(r["drive_frequency"], r["drive_amplitude"]) for r in runs
+              if r is not None and "drive_amplitude" in r]
+    fig, ax = plt.subplots(figsize=(6.4, 4.4))
+    if points:
+        ax.plot(*zip(*points), "o-", color="k")
+    ax.set_xlabel("drive frequency (Hz)")
+    ax.set_ylabel("tip amplitude at the drive frequency (mm)")
+    ax.set_title("Bellows (Dragon Skin 20, quarter model) driven by 0.2 kPa", fontsize=9)
     fig.tight_layout()
     fig.savefig(path, dpi=120)
     plt.close(fig)
@@ -238,6 +281,25 @@ def write_report(path, results, session):
               "inflation scene (lines), written by this script from the runs listed "
               "above" + (f" (commit `{session['runs'][-1]['commit']}`)."
                          if session.get("runs") else ".")]
+    drives = [by_name.get(f"drive_{f}") for f in DRIVES]
+    drives = [r for r in drives if r is not None and "drive_amplitude" in r]
+    if drives:
+        resonance_figure(REPOSITORY / "doc" / "figures" / "pneumatics_resonance.png", by_name)
+        lines += ["", "## A sinusoidal pressure: the resonance curve", "",
+                  "`parameters/bellows/oscillation_ds20_3d.prm`: the hanging actuator "
+                  "under p = 0.2 kPa sin(2π f t) for 10 s. The amplitude is that of the "
+                  f"tip displacement's component at f, fitted after {STEADY:g} s; the "
+                  "half range of the last 2 s includes what is left of the free "
+                  "vibration.", "",
+                  "| f (Hz) | amplitude at f (mm) | half range, last 2 s (mm) | status | wall (s) |",
+                  "|---|---|---|---|---|"]
+        for r in drives:
+            lines.append(f"| {r['drive_frequency']:g} | {fmt(r['drive_amplitude'], 4)} | "
+                         f"{fmt(r['half_range_last_2s'], 4)} | {r.get('status')} | "
+                         f"{r['measured_seconds']:.0f} |")
+        lines += ["", "![resonance curve](figures/pneumatics_resonance.png)", "",
+                  "The tip's amplitude at the drive frequency against that frequency, "
+                  "written by this script from the runs listed above."]
     path.write_text("\n".join(lines) + "\n")
     print(f"wrote {path}")
 
