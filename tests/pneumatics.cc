@@ -14,7 +14,9 @@
 // - a gas cavity driven by a mass inflow: the same pressure history for
 //   dt, dt/2 and dt/4 to the second-order error of the time integration;
 //   the energy balance with the pressure work, and that work against the
-//   isothermal gas's closed form.
+//   isothermal gas's closed form;
+// - a mass on the gas spring of a closed cavity: its period against the
+//   gas stiffness's.
 // Each test says where its tolerance comes from.
 
 #include "solver_test_tools.h"
