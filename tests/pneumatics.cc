@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
+
 // @sect3{Tests of the pneumatic load}
 //
 // The follower pressure, the gas in the cavity and the solver of the

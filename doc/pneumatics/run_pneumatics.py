@@ -1,4 +1,5 @@
 #!/usr/bin/python3
+# SPDX-License-Identifier: LGPL-2.1-or-later
 """Pneumatic actuation of the bellows (Dragon Skin 20, quarter model,
 baseline parameter set): experiment 1 released from a soft vacuum at three
 levels against the half-weight hold, and the inflation of the hanging
