@@ -28,6 +28,11 @@
 #   ./soft-robot.sh twisting-column
 #                              build in Release, run the twisting-column
 #                              benchmark and write doc/twisting_column.md
+#   ./soft-robot.sh pneumatics build in Release, run experiment 1 released
+#                              from three vacuum levels and from the hold,
+#                              the inflation (static curve and ramp, hold,
+#                              vent) and a sinusoidal pressure drive, and
+#                              write doc/pneumatics.md
 #
 # Build directories: build-release/ and build-debug/ beside this script.
 set -euo pipefail
@@ -93,7 +98,7 @@ case "${1:-}" in
     build Release build-release -DSOFT_ROBOT_BUILD_TESTS=OFF
     /usr/bin/python3 doc/locking/run_locking.py build-release "${@:2}"
     ;;
-  stability|error-vs-runtime|twisting-column|damping)
+  stability|error-vs-runtime|twisting-column|damping|pneumatics)
     packages+=(python3-numpy python3-matplotlib)
     install_missing_packages
     build Release build-release -DSOFT_ROBOT_BUILD_TESTS=OFF

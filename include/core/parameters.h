@@ -200,6 +200,45 @@ namespace SoftRobot
       parse_parameters(ParameterHandler &prm);
     };
 
+    // @sect4{Pneumatics}
+    //
+    // A pressure on the cavity of a pneumatic actuator: prescribed as a
+    // function of time (an expression or a table of measured pressures), or
+    // that of a gas enclosed in the cavity. See PneumaticLoad,
+    // FollowerPressure, GasCavity and PressureHistory.
+    struct Pneumatics
+    {
+      enum class PressureModel
+      {
+        prescribed,
+        gas
+      };
+      std::vector<unsigned int> pressure_boundary_ids;
+      PressureModel             pressure_model;
+      std::string               pressure_expression;
+      std::string               pressure_table;
+      double                    equivalent_area;
+      double                    initial_gas_pressure;
+      double                    ambient_pressure;
+      double                    gas_exponent;
+      double                    dead_volume;
+      std::string               inflow_expression;
+      double                    gas_temperature;
+      bool                      rank_one_tangent;
+
+      // Whether a pressure acts (any boundary named).
+      bool
+      has_pressure() const
+      {
+        return !pressure_boundary_ids.empty();
+      }
+
+      static void
+      declare_parameters(ParameterHandler &prm);
+      void
+      parse_parameters(ParameterHandler &prm);
+    };
+
     // @sect4{Initial conditions}
     struct InitialConditions
     {
@@ -333,6 +372,7 @@ namespace SoftRobot
                            public Materials,
                            public Damping,
                            public Loads,
+                           public Pneumatics,
                            public InitialConditions,
                            public TimeIntegration,
                            public NonlinearSolver,
@@ -367,6 +407,8 @@ namespace SoftRobot
     private:
       void
       check_consistency() const;
+      void
+      check_pneumatics() const;
     };
 
     // The words of the parameter file for the options that other output

@@ -127,6 +127,21 @@ namespace SoftRobot
                   TrilinosWrappers::MPI::Vector       &internal_force,
                   TrilinosWrappers::MPI::Vector       &damping_force);
 
+    // @sect4{The pneumatic load}
+    //
+    // The load object (after setup_system(), with a Pneumatics subsection
+    // that names boundaries), for tests that evaluate its forces and
+    // volume at displacements of their choosing; and the gauge pressure,
+    // gas volume and nodal pressure forces of the current state.
+    PneumaticLoad<dim> &
+    get_pneumatics();
+    double
+    pressure() const;
+    double
+    gas_volume() const;
+    const TrilinosWrappers::MPI::Vector &
+    pressure_force() const;
+
     // @sect4{The statistics of the run so far}
     unsigned int
     n_steps() const;

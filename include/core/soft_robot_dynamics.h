@@ -73,9 +73,11 @@
 #include <physics/cell_geometry.h>
 #include <physics/hyperelastic_solid.h>
 #include <physics/inertia.h>
+#include <physics/pneumatic_load.h>
 #include <physics/traction_load.h>
 #include <solvers/linear_solver.h>
 #include <solvers/newton_solver.h>
+#include <solvers/rank_one_correction.h>
 #include <solvers/time_step_controller.h>
 #include <time_integration/hht_stepper.h>
 
@@ -99,11 +101,12 @@ namespace SoftRobot
     double gravity_potential   = 0.; // $-\int\rho_0\mathbf g\cdot\mathbf u\,dV$
     double traction_work       = 0.; // work done by the tractions so far
     double damping_dissipation = 0.; // energy taken by the damping forces
+    double pressure_work       = 0.; // work done by the pneumatic pressure
     double
     balance(const double initial_total) const
     {
-      return kinetic + strain + gravity_potential - traction_work +
-             damping_dissipation - initial_total;
+      return kinetic + strain + gravity_potential - traction_work -
+             pressure_work + damping_dissipation - initial_total;
     }
   };
 
@@ -233,6 +236,18 @@ namespace SoftRobot
     assemble_external_force(const double                   time,
                             const double                   load_factor,
                             TrilinosWrappers::MPI::Vector &force) const;
+    // The pneumatic load at displacement u and time t into `state`: its
+    // pressure, gas volume and stiffness, the volume gradient and the
+    // nodal forces $p\,\mathbf g$ (see PneumaticLoad).
+    struct State;
+    void
+    evaluate_pneumatics(const TrilinosWrappers::MPI::Vector &u,
+                        const double                         time,
+                        State                               &state);
+    // The linear solver prepared for system_matrix, with the rank-one term
+    // of a gas cavity if one is set (see RankOneCorrection).
+    void
+    prepare_linear_solver();
 
     // @sect4{Output}
     void
@@ -282,6 +297,7 @@ namespace SoftRobot
     CellGeometry<dim>                     cell_geometry;
     std::unique_ptr<HyperelasticSolid<dim>> solid;
     std::unique_ptr<AerodynamicDrag<dim>>   drag;
+    std::unique_ptr<PneumaticLoad<dim>>     pneumatics;
     // Whether any damping acts (stiffness- or mass-proportional, drag), and
     // whether the stiffness-proportional one is the lagged matrix.
     bool                                  damped        = false;
@@ -323,6 +339,8 @@ namespace SoftRobot
     // system_matrix, and refers to it: it is declared after the matrices,
     // so that it is destroyed before them.
     LinearSolver linear_solver;
+    // The gas cavity's rank-one term of the matrix prepared last.
+    RankOneCorrection rank_one;
 
     // @sect4{The state of the motion}
     //
@@ -335,6 +353,13 @@ namespace SoftRobot
       TrilinosWrappers::MPI::Vector u, v, a;
       TrilinosWrappers::MPI::Vector internal_force, external_force;
       TrilinosWrappers::MPI::Vector damping_force;
+      // The pneumatic load (empty vectors without one): nodal forces
+      // $p\,\mathbf g$, the volume gradient $\mathbf g$, the gauge pressure,
+      // the gas volume of the whole body and the gas stiffness $s$.
+      TrilinosWrappers::MPI::Vector pressure_force, volume_gradient;
+      double                        pressure      = 0.;
+      double                        gas_volume    = 0.;
+      double                        gas_stiffness = 0.;
     };
     State current;
     State previous;
@@ -344,6 +369,7 @@ namespace SoftRobot
     EnergyAccount                 energy;
     TrilinosWrappers::MPI::Vector hht_damping_force;
     TrilinosWrappers::MPI::Vector hht_traction_force;
+    TrilinosWrappers::MPI::Vector hht_pressure_force;
     double                        initial_total_energy = 0.;
 
     // What the run has done so far.

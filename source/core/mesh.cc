@@ -223,6 +223,8 @@ namespace SoftRobot
         id, "Loads and constraints/Traction boundary ids");
     for (const unsigned int id : parameters.drag_boundary_ids)
       named_boundaries.emplace_back(id, "Damping/Drag boundary ids");
+    for (const unsigned int id : parameters.pressure_boundary_ids)
+      named_boundaries.emplace_back(id, "Pneumatics/Pressure boundary ids");
     if (parameters.tip_region_type ==
         Parameters::Output::TipRegionType::boundary)
       named_boundaries.emplace_back(parameters.tip_region_id,

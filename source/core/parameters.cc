@@ -552,6 +552,140 @@ namespace SoftRobot
 
 
 
+    // @sect4{Pneumatics}
+    void
+    Pneumatics::declare_parameters(ParameterHandler &prm)
+    {
+      prm.enter_subsection("Pneumatics");
+      prm.declare_entry(
+        "Pressure boundary ids",
+        "",
+        Patterns::List(Patterns::Integer(0)),
+        "Boundaries on which the pressure acts; empty: none. In 3D the "
+        "cavity surface (boundary 2 of the bellows meshes), loaded by the "
+        "pressure p on its deformed area (a follower load, -p n da with n "
+        "the body's outer normal). In the reduced 1D and 2D models, with an "
+        "Equivalent area, the end face that stands for the bellows' end cap; "
+        "without one, any boundary, loaded by p on its deformed area.");
+      prm.declare_entry(
+        "Pressure model",
+        "prescribed",
+        Patterns::Selection("prescribed|gas"),
+        "'prescribed': p is the function of time of Pressure or Pressure "
+        "table. 'gas': the cavity holds a gas sealed at t = 0 with the "
+        "Initial pressure, p_abs = p_abs0 (rho / rho0)^gamma with the gas "
+        "density rho = m(t) / V from the cavity volume V (closed by the "
+        "symmetry planes, divided by the Model fraction, plus the Dead "
+        "volume) and the gas mass m(t) (Mass inflow rate).");
+      prm.declare_entry(
+        "Pressure",
+        "",
+        Patterns::Anything(),
+        "Prescribed gauge pressure (above ambient), kPa, an expression of t "
+        "(steps, ramps, sinusoids; the Function constants of Loads and "
+        "constraints apply), e.g. 't < 0.1 ? 10*t/0.1 : 10'. Negative: a "
+        "vacuum. Empty: zero, or the Pressure table.");
+      prm.declare_entry(
+        "Pressure table",
+        "",
+        Patterns::Anything(),
+        "A CSV file of measured pressures, relative to the directory of the "
+        "parameter file: lines 'time, gauge pressure' (s, kPa) with "
+        "increasing times; lines starting with '#' and a first line of "
+        "column names are skipped. The pressure is interpolated linearly, "
+        "and held at the first and last value outside the table. Only one "
+        "of Pressure and Pressure table may be given.");
+      prm.declare_entry(
+        "Equivalent area",
+        "0",
+        Patterns::Double(0),
+        "Reduced 1D and 2D models of the bellows only: the cavity's pressure "
+        "acts as the end force p A on the Pressure boundary ids, spread "
+        "evenly over them along their reference outer normal, and the cavity "
+        "volume changes by A times their mean normal displacement; A in "
+        "mm^2, the area dV/d(elongation) of the 3D actuator. 0: the "
+        "pressure acts on the deformed boundary itself (any dimension).");
+      prm.declare_entry("Initial pressure",
+                        "0",
+                        Patterns::Double(),
+                        "Gas model: the gauge pressure of the gas at t = 0, "
+                        "kPa, with which the initial static equilibrium is "
+                        "computed and the cavity is sealed.");
+      prm.declare_entry("Ambient pressure",
+                        "101.325",
+                        Patterns::Double(1e-6),
+                        "Gas model: the absolute pressure of the "
+                        "surroundings, kPa; the load is the gauge pressure, "
+                        "the absolute one less this.");
+      prm.declare_entry("Gas law exponent",
+                        "1",
+                        Patterns::Double(1, 2),
+                        "Gas model: gamma of p_abs V^gamma = const for a "
+                        "fixed gas mass; 1 for an isothermal gas (slow "
+                        "motions, a cavity that exchanges heat with its "
+                        "walls), 1.4 for air compressed adiabatically.");
+      prm.declare_entry("Dead volume",
+                        "0",
+                        Patterns::Double(0),
+                        "Gas model: the volume the gas occupies outside the "
+                        "meshed cavity (tubing, valves), mm^3, for the "
+                        "whole physical body; in the reduced models with "
+                        "an Equivalent area, the whole cavity volume at "
+                        "zero displacement.");
+      prm.declare_entry("Mass inflow rate",
+                        "",
+                        Patterns::Anything(),
+                        "Gas model: the mass of gas flowing into the "
+                        "cavity per unit time, kg/s, an expression of t "
+                        "(negative: outflow); empty: a closed cavity. "
+                        "Integrated in time on a fixed grid of 1e-4 s, "
+                        "independent of the time step.");
+      prm.declare_entry("Gas temperature",
+                        "293.15",
+                        Patterns::Double(1),
+                        "Gas model: the temperature of the gas at t = 0, K, "
+                        "which with the specific gas constant of air (287.05 "
+                        "J/(kg K)) gives its initial density and so the "
+                        "effect of a Mass inflow rate.");
+      prm.declare_entry("Rank-one tangent",
+                        "true",
+                        Patterns::Bool(),
+                        "Gas model: keep the gas's stiffness, the rank-one "
+                        "term -(dp/dV) g g^T of the tangent (g = dV/du), in "
+                        "the Newton matrix, solved by the Sherman-Morrison "
+                        "formula on top of the sparse matrix's "
+                        "factorization or multigrid. false leaves it out, "
+                        "for comparison: the iterations then converge "
+                        "linearly, to the same answer.");
+      prm.leave_subsection();
+    }
+
+    void
+    Pneumatics::parse_parameters(ParameterHandler &prm)
+    {
+      prm.enter_subsection("Pneumatics");
+      pressure_boundary_ids.clear();
+      for (const int id : Utilities::string_to_int(
+             Utilities::split_string_list(prm.get("Pressure boundary ids"))))
+        pressure_boundary_ids.push_back(id);
+      pressure_model       = (prm.get("Pressure model") == "gas") ?
+                               PressureModel::gas :
+                               PressureModel::prescribed;
+      pressure_expression  = prm.get("Pressure");
+      pressure_table       = prm.get("Pressure table");
+      equivalent_area      = prm.get_double("Equivalent area");
+      initial_gas_pressure = prm.get_double("Initial pressure");
+      ambient_pressure     = prm.get_double("Ambient pressure");
+      gas_exponent         = prm.get_double("Gas law exponent");
+      dead_volume          = prm.get_double("Dead volume");
+      inflow_expression    = prm.get("Mass inflow rate");
+      gas_temperature      = prm.get_double("Gas temperature");
+      rank_one_tangent     = prm.get_bool("Rank-one tangent");
+      prm.leave_subsection();
+    }
+
+
+
     // @sect4{Initial conditions}
     void
     InitialConditions::declare_parameters(ParameterHandler &prm)
@@ -958,6 +1092,7 @@ namespace SoftRobot
       Materials::declare_parameters(prm);
       Damping::declare_parameters(prm);
       Loads::declare_parameters(prm);
+      Pneumatics::declare_parameters(prm);
       InitialConditions::declare_parameters(prm);
       TimeIntegration::declare_parameters(prm);
       NonlinearSolver::declare_parameters(prm);
@@ -974,6 +1109,7 @@ namespace SoftRobot
       Materials::parse_parameters(prm);
       Damping::parse_parameters(prm);
       Loads::parse_parameters(prm);
+      Pneumatics::parse_parameters(prm);
       InitialConditions::parse_parameters(prm);
       TimeIntegration::parse_parameters(prm);
       NonlinearSolver::parse_parameters(prm);
@@ -1071,6 +1207,9 @@ namespace SoftRobot
         std::filesystem::path(filename).parent_path();
       if (!mesh_file.empty() && std::filesystem::path(mesh_file).is_relative())
         mesh_file = (directory / mesh_file).string();
+      if (!pressure_table.empty() &&
+          std::filesystem::path(pressure_table).is_relative())
+        pressure_table = (directory / pressure_table).string();
       check_consistency();
     }
 
@@ -1156,12 +1295,68 @@ namespace SoftRobot
                                  "' are allowed in " +
                                  std::to_string(dimension) + "D."));
         }
+      check_pneumatics();
       AssertThrow(mesh_source != MeshSource::file || !mesh_file.empty(),
                   ExcMessage(where + "Geometry/Mesh file must name a gmsh "
                                      "file when Mesh source = file."));
       AssertThrow(mesh_source != MeshSource::file || std::ifstream(mesh_file),
                   ExcMessage(where + "Geometry/Mesh file: cannot open '" +
                              mesh_file + "'."));
+    }
+
+
+
+    // The entries of Pneumatics that are valid one by one but not together.
+    void
+    AllParameters::check_pneumatics() const
+    {
+      const std::string where = this->where() + "Pneumatics/";
+      const bool        gas   = (pressure_model == PressureModel::gas);
+      AssertThrow(pressure_expression.empty() || pressure_table.empty(),
+                  ExcMessage(where + "Pressure = '" + pressure_expression +
+                             "' and Pressure table = '" + pressure_table +
+                             "' are both given; give one of them."));
+      AssertThrow(!gas || (pressure_expression.empty() &&
+                           pressure_table.empty()),
+                  ExcMessage(where + "Pressure model = gas takes its "
+                                     "pressure from the gas law: Pressure "
+                                     "and Pressure table must be empty "
+                                     "(the gas starts at Initial "
+                                     "pressure)."));
+      AssertThrow(!gas || has_pressure(),
+                  ExcMessage(where + "Pressure model = gas needs the "
+                                     "cavity surface in Pressure boundary "
+                                     "ids."));
+      AssertThrow(gas || inflow_expression.empty(),
+                  ExcMessage(where + "Mass inflow rate = '" +
+                             inflow_expression +
+                             "' is given, but the Pressure model is "
+                             "'prescribed': a gas flows only into a cavity "
+                             "of the 'gas' model."));
+      AssertThrow(dimension < 3 || equivalent_area == 0.,
+                  ExcMessage(where + "Equivalent area = " +
+                             std::to_string(equivalent_area) +
+                             " is for the reduced 1D and 2D models; in 3D "
+                             "the pressure acts on the cavity surface "
+                             "itself (set it to 0)."));
+      AssertThrow(!gas || dimension == 3 || equivalent_area > 0.,
+                  ExcMessage(where + "Pressure model = gas in " +
+                             std::to_string(dimension) +
+                             "D needs an Equivalent area: the reduced "
+                             "models have no cavity whose volume the gas "
+                             "could fill."));
+      AssertThrow(!gas || ambient_pressure + initial_gas_pressure > 0.,
+                  ExcMessage(where + "Initial pressure = " +
+                             std::to_string(initial_gas_pressure) +
+                             " kPa is an absolute pressure of " +
+                             std::to_string(ambient_pressure +
+                                            initial_gas_pressure) +
+                             " kPa with the Ambient pressure: it must be "
+                             "positive (a gauge pressure above -" +
+                             std::to_string(ambient_pressure) + " kPa)."));
+      AssertThrow(pressure_table.empty() || std::ifstream(pressure_table),
+                  ExcMessage(where + "Pressure table: cannot open '" +
+                             pressure_table + "'."));
     }
 
 

@@ -229,6 +229,45 @@ namespace SoftRobot
 
 
   template <int dim>
+  PneumaticLoad<dim> &
+  SimulatorAccess<dim>::get_pneumatics()
+  {
+    Assert(simulator.pneumatics != nullptr,
+           ExcMessage("There is a pneumatic load after setup_system() when "
+                      "Pneumatics/Pressure boundary ids names boundaries."));
+    return *simulator.pneumatics;
+  }
+
+
+
+  template <int dim>
+  double
+  SimulatorAccess<dim>::pressure() const
+  {
+    return simulator.current.pressure;
+  }
+
+
+
+  template <int dim>
+  double
+  SimulatorAccess<dim>::gas_volume() const
+  {
+    return simulator.current.gas_volume;
+  }
+
+
+
+  template <int dim>
+  const TrilinosWrappers::MPI::Vector &
+  SimulatorAccess<dim>::pressure_force() const
+  {
+    return simulator.current.pressure_force;
+  }
+
+
+
+  template <int dim>
   unsigned int
   SimulatorAccess<dim>::n_steps() const
   {

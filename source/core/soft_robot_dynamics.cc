@@ -220,8 +220,8 @@ namespace SoftRobot
   // Degrees of freedom, the constraints of the fixed boundaries, the
   // sparsity pattern shared by the tangent, damping and mass matrices, the
   // state vectors; then the physics (cell geometry, materials, mass and
-  // gravity, tractions), the global addition, the near null space of the
-  // multigrid solver and the tip region.
+  // gravity, tractions, the pneumatic load), the global addition, the near
+  // null space of the multigrid solver and the tip region.
   template <int dim>
   void
   SoftRobotDynamics<dim>::setup_system()
@@ -310,6 +310,27 @@ namespace SoftRobot
                    constraints,
                    mpi_communicator);
     traction.reinit(*mapping, dof_handler, *face_quadrature);
+    if (parameters.has_pressure())
+      {
+        pneumatics = std::make_unique<PneumaticLoad<dim>>(parameters,
+                                                          triangulation,
+                                                          cell_geometry,
+                                                          *mapping,
+                                                          dof_handler,
+                                                          *face_quadrature,
+                                                          constraints,
+                                                          locally_owned_dofs,
+                                                          locally_relevant_dofs,
+                                                          mpi_communicator,
+                                                          symmetric_tangent);
+        for (State *state : {&current, &previous})
+          {
+            state->pressure_force.reinit(locally_owned_dofs, mpi_communicator);
+            state->volume_gradient.reinit(locally_owned_dofs,
+                                          mpi_communicator);
+          }
+        pcout << pneumatics->description() << std::endl;
+      }
     if (parameters.direct_addresses)
       assembler = DirectAddressAssembler<dim>::create(
         cell_geometry,

@@ -44,7 +44,10 @@ namespace SoftRobot
   // component per dimension; x is the actuator's axis), the energies of
   // EnergyAccount and their balance, the Newton iterations of the step, and
   // the angular momentum about the origin (its three components in 3D, the
-  // z-component in 2D, none in 1D).
+  // z-component in 2D, none in 1D). With a pneumatic load: the gauge
+  // pressure, the gas volume of the whole body (if the loaded surface
+  // bounds one) and the work of the pressure, which the energy balance
+  // holds.
   template <int dim>
   void
   SoftRobotDynamics<dim>::open_trajectory()
@@ -67,6 +70,13 @@ namespace SoftRobot
       columns.insert(columns.end(), {"L_x", "L_y", "L_z"});
     else if (dim == 2)
       columns.emplace_back("L_z");
+    if (pneumatics)
+      {
+        columns.emplace_back("pressure");
+        if (pneumatics->has_volume())
+          columns.emplace_back("cavity_volume");
+        columns.emplace_back("pressure_work");
+      }
     // The materials, for the title of a plot (doc/plot_tip_trajectory.py).
     std::ostringstream materials;
     materials << "materials:";
@@ -86,8 +96,9 @@ namespace SoftRobot
          std::to_string(parameters.tip_region_id) + ", from " +
          parameters.source_name,
        materials.str(),
-       "units: s, mm, mm/s; energies in kg mm^2/s^2 (= 1e-6 J); "
-       "angular momentum in kg mm^2/s"},
+       std::string("units: s, mm, mm/s; energies in kg mm^2/s^2 (= 1e-6 J); "
+                   "angular momentum in kg mm^2/s") +
+         (pneumatics ? "; gauge pressure in kPa, volume in mm^3" : "")},
       columns);
   }
 
@@ -120,6 +131,13 @@ namespace SoftRobot
       row.insert(row.end(), {L[0], L[1], L[2]});
     else if (dim == 2)
       row.push_back(L[2]);
+    if (pneumatics)
+      {
+        row.push_back(current.pressure);
+        if (pneumatics->has_volume())
+          row.push_back(current.gas_volume);
+        row.push_back(energy.pressure_work);
+      }
     trajectory.write_row(row);
   }
 
@@ -195,7 +213,10 @@ namespace SoftRobot
             {"strain energy", energy.strain},
             {"gravitational energy", energy.gravity_potential},
             {"traction work", energy.traction_work},
-            {"damping dissipation", energy.damping_dissipation}};
+            {"damping dissipation", energy.damping_dissipation},
+            {"pressure", current.pressure},
+            {"gas volume", current.gas_volume},
+            {"pressure work", energy.pressure_work}};
   }
 
 
@@ -210,7 +231,10 @@ namespace SoftRobot
   // cell. ParaView's "Warp By Vector" with the displacement shows the
   // deformed body. The cell averages come from the material laws at the
   // cell's quadrature points (HyperelasticSolid); they are written as cell
-  // data (output/cell_data.h).
+  // data (output/cell_data.h). With a pneumatic load, the pressure on the
+  // cavity surface: the gauge pressure on the cells that carry loaded
+  // faces (zero on the others), and the nodal pressure forces $p\,\mathbf
+  // g$ (mN), a vector field on the loaded surface.
   template <int dim>
   std::pair<std::unique_ptr<DataOut<dim>>, CellData>
   SoftRobotDynamics<dim>::field_data() const
@@ -221,7 +245,7 @@ namespace SoftRobot
     ghosted_u                  = current.u;
     const unsigned int n_cells = triangulation.n_active_cells();
     Vector<float> volume_ratio(n_cells), von_mises(n_cells), material(n_cells),
-      rank(n_cells);
+      rank(n_cells), cavity_pressure(n_cells);
     std::vector<Vector<float>> stress(dim * (dim + 1) / 2,
                                       Vector<float>(n_cells));
     const unsigned int         n = cell_geometry.dofs_per_cell;
@@ -245,6 +269,8 @@ namespace SoftRobot
               sigma_3d[i][j] = mean_sigma[i][j];
           von_mises[index] = std::sqrt(1.5) * deviator(sigma_3d).norm();
           material[index]  = cell->material_id();
+          if (pneumatics && pneumatics->surface().loads_cell(cell_number))
+            cavity_pressure[index] = current.pressure;
           rank[index]      = cell->subdomain_id();
           unsigned int c   = 0;
           for (unsigned int i = 0; i < dim; ++i)
@@ -259,6 +285,8 @@ namespace SoftRobot
     cell_data.add("von_Mises_stress", von_mises);
     cell_data.add("material_id", material);
     cell_data.add("mpi_rank", rank);
+    if (pneumatics)
+      cell_data.add("cavity_pressure", cavity_pressure);
     const char  *axis = "xyz";
     unsigned int c    = 0;
     for (unsigned int i = 0; i < dim; ++i)
@@ -277,6 +305,11 @@ namespace SoftRobot
           std::make_pair(&current.a, "acceleration")})
       data_out->add_data_vector(*field,
                                 std::vector<std::string>(dim, name),
+                                DataOut<dim>::type_dof_data,
+                                vector_field);
+    if (pneumatics)
+      data_out->add_data_vector(current.pressure_force,
+                                std::vector<std::string>(dim, "pressure_force"),
                                 DataOut<dim>::type_dof_data,
                                 vector_field);
     // zlib's fastest level: deal.II's default, the best compression, takes

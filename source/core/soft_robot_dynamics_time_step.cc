@@ -21,7 +21,9 @@ namespace SoftRobot
   // @sect4{SoftRobotDynamics::assemble_forces}
   //
   // The physics of every cell -- HyperelasticSolid's, then the drag on the
-  // cell's faces -- added by the global assembler.
+  // cell's faces and the stiffness of the pneumatic load on them (at the
+  // pressure of its last evaluation; its force is added globally, see
+  // evaluate_pneumatics()) -- added by the global assembler.
   template <int dim>
   AssemblyResult
   SoftRobotDynamics<dim>::assemble_forces(
@@ -51,6 +53,8 @@ namespace SoftRobot
         solid->cell_contribution(local);
         if (drag && local.input_values.size() > 1)
           drag->add_cell_contribution(local);
+        if (pneumatics)
+          pneumatics->add_cell_contribution(local);
       },
       inputs,
       request,
@@ -89,6 +93,8 @@ namespace SoftRobot
     request.second_matrix   = damped && (solid->has_damping() || drag);
     request.second_force    = damped;
     request.store_viscosity = true;
+    if (pneumatics)
+      evaluate_pneumatics(current.u, current.time, current);
     const AssemblyResult assembly =
       assemble_forces(current.u,
                       damped ? &current.v : nullptr,
@@ -213,6 +219,45 @@ namespace SoftRobot
 
 
 
+  // @sect4{SoftRobotDynamics::evaluate_pneumatics}
+  //
+  // The pressure, volume and volume gradient of the pneumatic load at (u,
+  // t), and its nodal forces $\mathbf f_p = p\,\mathbf g$. They enter the
+  // residuals as a load that depends on the configuration: at both states
+  // of the HHT equation, with the HHT weights (see evaluate_residual()).
+  template <int dim>
+  void
+  SoftRobotDynamics<dim>::evaluate_pneumatics(
+    const TrilinosWrappers::MPI::Vector &u,
+    const double                         time,
+    State                               &state)
+  {
+    TimerOutput::Scope timer_section(computing_timer, "Pneumatic load");
+    const typename PneumaticLoad<dim>::Evaluation evaluation =
+      pneumatics->evaluate(u, time, state.volume_gradient);
+    state.pressure      = evaluation.pressure;
+    state.gas_volume    = evaluation.volume;
+    state.gas_stiffness = evaluation.stiffness;
+    state.pressure_force.equ(evaluation.pressure, state.volume_gradient);
+  }
+
+
+
+  // @sect4{SoftRobotDynamics::prepare_linear_solver}
+  //
+  // The factorization (or multigrid hierarchy) of system_matrix, and on top
+  // of it the Sherman-Morrison correction for the gas cavity's rank-one
+  // term, if one is set: one more solve (see RankOneCorrection).
+  template <int dim>
+  void
+  SoftRobotDynamics<dim>::prepare_linear_solver()
+  {
+    linear_solver.prepare(system_matrix);
+    counters.linear_iterations += rank_one.prepare(linear_solver);
+  }
+
+
+
   // @sect4{SoftRobotDynamics::newton_problem}
   //
   // What Newton's method needs of a problem: its residual, and a solver for
@@ -230,10 +275,11 @@ namespace SoftRobot
   {
     NewtonSolver::Problem problem;
     problem.evaluate        = evaluate;
-    problem.prepare_tangent = [this]() { linear_solver.prepare(system_matrix); };
+    problem.prepare_tangent = [this]() { prepare_linear_solver(); };
     problem.solve           = [this](const TrilinosWrappers::MPI::Vector &rhs,
                            TrilinosWrappers::MPI::Vector       &solution) {
-      const unsigned int iterations = linear_solver.solve(rhs, solution);
+      const unsigned int iterations =
+        rank_one.solve(linear_solver, rhs, solution);
       constraints.set_zero(solution);
       counters.linear_iterations += iterations;
       return iterations;
@@ -264,22 +310,47 @@ namespace SoftRobot
                                                  mpi_communicator);
     assemble_external_force(time, 1., traction_force);
     traction_force -= inertia.gravity_force;
-    const bool has_gravity  = inertia.gravity_force.l2_norm() > 0.;
-    const bool has_traction = traction_force.l2_norm() > 0.;
+    // The pneumatic pressure of the time t rises with the tractions; a
+    // closed cavity's load has the potential $-pV$, an open surface's none.
+    const double pressure =
+      pneumatics ? pneumatics->initial_pressure(time) : 0.;
+    const bool   has_gravity  = inertia.gravity_force.l2_norm() > 0.;
+    const bool   has_traction = traction_force.l2_norm() > 0. || pressure != 0.;
+    double       pressure_factor = 0.;
 
     TrilinosWrappers::MPI::Vector external(traction_force);
     TrilinosWrappers::MPI::Vector internal(traction_force);
+    TrilinosWrappers::MPI::Vector gradient(traction_force);
     const NewtonSolver::Problem   problem = newton_problem(
       [&](const TrilinosWrappers::MPI::Vector &u,
           const bool                           with_matrix,
           TrilinosWrappers::MPI::Vector       &r) {
+        double pressure_potential = 0.;
+        if (pneumatics)
+          {
+            const auto evaluation =
+              pneumatics->evaluate_at_pressure(u,
+                                               pressure_factor * pressure,
+                                               gradient);
+            pressure_potential =
+              pneumatics->has_volume() ?
+                -evaluation.pressure *
+                  (evaluation.volume - parameters.dead_volume) *
+                  parameters.model_fraction :
+                std::numeric_limits<double>::quiet_NaN();
+          }
         AssemblyResult assembly =
           assemble_internal_force(u, with_matrix, internal);
         system_matrix_is_state_stiffness = false;
+        if (with_matrix)
+          rank_one.clear();
         r = internal;
         r -= external;
-        assembly.force_scale      = internal.l2_norm();
-        assembly.potential_energy = assembly.strain_energy - external * u;
+        if (pneumatics)
+          r.add(-pressure_factor * pressure, gradient);
+        assembly.force_scale = internal.l2_norm();
+        assembly.potential_energy =
+          assembly.strain_energy - external * u + pressure_potential;
         constraints.set_zero(r);
         return assembly;
       });
@@ -296,6 +367,7 @@ namespace SoftRobot
         external               = 0.;
         external.add(std::min(target, 1.), inertia.gravity_force);
         external.add(std::max(target - 1., 0.), traction_force);
+        pressure_factor = std::max(target - 1., 0.);
         const TrilinosWrappers::MPI::Vector saved = current.u;
         try
           {
@@ -342,6 +414,8 @@ namespace SoftRobot
     TrilinosWrappers::MPI::Vector rhs(current.external_force);
     rhs -= current.internal_force;
     rhs -= current.damping_force;
+    if (pneumatics)
+      rhs += current.pressure_force;
     constraints.set_zero(rhs);
     SolverControl control(1000, 1e-12 * std::max(rhs.l2_norm(), 1e-300));
     SolverCG<TrilinosWrappers::MPI::Vector> solver(control);
@@ -374,6 +448,9 @@ namespace SoftRobot
     if (parameters.initial_state ==
         Parameters::InitialConditions::InitialState::static_equilibrium)
       solve_static_equilibrium(0.);
+    // A gas is sealed in the cavity of the initial state.
+    if (pneumatics)
+      pneumatics->seal(current.u);
 
     assemble_external_force(0., 1., current.external_force);
     compute_initial_acceleration();
@@ -382,9 +459,11 @@ namespace SoftRobot
     energy.gravity_potential   = -(inertia.gravity_force * current.u);
     energy.traction_work       = 0.;
     energy.damping_dissipation = 0.;
+    energy.pressure_work       = 0.;
     // The forces of the equation at t = 0, the first terms of the work and
     // dissipation sums (see update_energies()).
     hht_damping_force  = current.damping_force;
+    hht_pressure_force = current.pressure_force;
     hht_traction_force = current.external_force;
     hht_traction_force -= inertia.gravity_force;
     initial_total_energy =
@@ -416,6 +495,17 @@ namespace SoftRobot
   // v_{n+1}/\partial\mathbf u_{n+1} = c_v = \gamma/(\beta\Delta t)$; the
   // cell integrals include their velocity terms with $c_v$ (see
   // AssemblyRequest), the global damping matrices are added here.
+  //
+  // The pneumatic load $\mathbf f_p(\mathbf u, t) = p\,\mathbf g(\mathbf
+  // u)$ depends on the configuration (and, for a gas, on it alone). It is
+  // treated like the other forces of the equation: evaluated at both
+  // states, $\mathbf u_{n+1}$ (with the pressure of $t_{n+1}$, or of the
+  // gas at $V(\mathbf u_{n+1})$) and $\mathbf u_n$ (kept from the last
+  // step), with the HHT weights, so that the residual gets $-(1+\alpha)
+  // \mathbf f_{p,n+1} + \alpha\,\mathbf f_{p,n}$. Its derivative, times
+  // $1+\alpha$, is the load stiffness of the faces (in the cell integrals)
+  // and the gas's rank-one term $(1+\alpha)\,s\,\mathbf g\mathbf g^T$, which
+  // RankOneCorrection adds to the solves.
   template <int dim>
   AssemblyResult
   SoftRobotDynamics<dim>::evaluate_residual(
@@ -430,6 +520,8 @@ namespace SoftRobot
     request.matrix               = with_matrix;
     request.second_force         = damped;
     request.velocity_coefficient = stepper.velocity_coefficient(dt);
+    if (pneumatics)
+      evaluate_pneumatics(u_trial, current.time, current);
     AssemblyResult assembly =
       assemble_forces(u_trial,
                       damped ? &current.v : nullptr,
@@ -451,10 +543,16 @@ namespace SoftRobot
     residual.add(-w, current.external_force);
     residual.add(1. - w, previous.internal_force, 1. - w, previous.damping_force);
     residual.add(w - 1., previous.external_force);
+    if (pneumatics)
+      residual.add(-w, current.pressure_force, w - 1., previous.pressure_force);
     constraints.set_zero(residual);
 
     if (with_matrix)
       {
+        if (pneumatics && pneumatics->rank_one_in_matrix())
+          rank_one.set(current.volume_gradient, w * current.gas_stiffness);
+        else
+          rank_one.clear();
         system_matrix *= w;
         add_global_damping_matrices(w * stepper.velocity_coefficient(dt),
                                     system_matrix);
@@ -494,6 +592,11 @@ namespace SoftRobot
       {
         TrilinosWrappers::MPI::Vector force(locally_owned_dofs,
                                             mpi_communicator);
+        if (pneumatics)
+          {
+            State state = previous;
+            evaluate_pneumatics(previous.u, previous.time, state);
+          }
         assemble_internal_force(previous.u, true, force);
       }
     StiffnessHistory &history = stiffness_history;
@@ -524,7 +627,13 @@ namespace SoftRobot
       system_matrix.add(w * c_v, inertia.mass_damping);
     system_matrix.add(stepper.acceleration_coefficient(dt), inertia.mass);
     system_matrix_is_state_stiffness = false;
-    linear_solver.prepare(system_matrix);
+    // The gas's rank-one term of the state $\mathbf u_n$, like the
+    // stiffness.
+    if (pneumatics && pneumatics->rank_one_in_matrix())
+      rank_one.set(previous.volume_gradient, w * previous.gas_stiffness);
+    else
+      rank_one.clear();
+    prepare_linear_solver();
   }
 
 
@@ -554,7 +663,9 @@ namespace SoftRobot
                          TrilinosWrappers::MPI::Vector       &r) {
         return evaluate_residual(u, dt, with_matrix, r);
       }),
-      current.external_force.l2_norm(),
+      pneumatics ? std::max(current.external_force.l2_norm(),
+                            previous.pressure_force.l2_norm()) :
+                   current.external_force.l2_norm(),
       modified);
     counters.last_newton_iterations = result.iterations;
     counters.newton_iterations += result.iterations;
@@ -591,7 +702,12 @@ namespace SoftRobot
   // parameters and from the shifted internal force, and nothing else. For
   // $\alpha = 0$ the weights are the trapezoidal rule's, and for the
   // trapezoidal rule on a linear problem both parts vanish. (Gravity is
-  // constant; its work is the change of $V_g$ exactly.)
+  // constant; its work is the change of $V_g$ exactly.) The pneumatic load
+  // is booked like the tractions, with its HHT forces: $\Delta W_p =
+  // \Delta\mathbf u\cdot\tfrac12(\tilde{\mathbf f}_{p,n} + \tilde{\mathbf
+  // f}_{p,n+1})$. For a closed cavity at a constant pressure that is the
+  // trapezoidal rule for $\int p\,dV$; for a gas it is the work the gas
+  // does on the walls, the decrease of its internal energy.
   template <int dim>
   void
   SoftRobotDynamics<dim>::update_energies(const AssemblyResult &assembly)
@@ -606,6 +722,14 @@ namespace SoftRobot
     TrilinosWrappers::MPI::Vector traction_force(current.external_force);
     traction_force.sadd(w, 1. - w, previous.external_force);
     traction_force -= inertia.gravity_force;
+    if (pneumatics)
+      {
+        TrilinosWrappers::MPI::Vector pressure_force(current.pressure_force);
+        pressure_force.sadd(w, 1. - w, previous.pressure_force);
+        energy.pressure_work += 0.5 * (increment * pressure_force +
+                                       increment * hht_pressure_force);
+        hht_pressure_force = pressure_force;
+      }
 
     energy.kinetic           = 0.5 * inertia.mass.matrix_norm_square(current.v);
     energy.strain            = assembly.strain_energy;
@@ -684,6 +808,9 @@ namespace SoftRobot
     const double, TrilinosWrappers::SparseMatrix &) const;                    \
   template void SoftRobotDynamics<dim>::assemble_external_force(              \
     const double, const double, TrilinosWrappers::MPI::Vector &) const;       \
+  template void SoftRobotDynamics<dim>::evaluate_pneumatics(                  \
+    const TrilinosWrappers::MPI::Vector &, const double, State &);            \
+  template void SoftRobotDynamics<dim>::prepare_linear_solver();              \
   template NewtonSolver::Problem SoftRobotDynamics<dim>::newton_problem(     \
     const std::function<AssemblyResult(const TrilinosWrappers::MPI::Vector &, \
                                        const bool,                            \
