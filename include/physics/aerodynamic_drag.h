@@ -55,6 +55,7 @@
 #include <deal.II/base/quadrature.h>
 #include <deal.II/dofs/dof_handler.h>
 #include <deal.II/fe/mapping.h>
+#include <physics/boundary_faces.h>
 #include <physics/cell_geometry.h>
 
 #include <vector>
@@ -64,7 +65,7 @@ namespace SoftRobot
   using namespace dealii;
 
   template <int dim>
-  class AerodynamicDrag
+  class AerodynamicDrag : private BoundaryFaces<dim>
   {
   public:
     // The faces of the locally owned cells on `Damping/Drag boundary ids`,
@@ -104,17 +105,14 @@ namespace SoftRobot
     const std::vector<unsigned int> boundary_ids;
     const double                    coefficient; // 1/2 rho_air C_d
     const bool                      symmetric_tangent;
-    unsigned int                    n_q_points    = 0;
-    unsigned int                    dofs_per_cell = 0;
-    std::vector<unsigned int>       components;
-    // The faces of each cell, [first_face[cell], first_face[cell + 1]), and
-    // per face and point the reference normal, the weight times the section
-    // factor, and the values and gradients of the scalar shape functions.
-    std::vector<unsigned int>   first_face;
-    std::vector<Tensor<1, dim>> normals;
-    std::vector<double>         weights;
-    std::vector<double>         shape_values;
-    std::vector<Tensor<1, dim>> shape_gradients;
+    using BoundaryFaces<dim>::n_q_points;
+    using BoundaryFaces<dim>::dofs_per_cell;
+    using BoundaryFaces<dim>::components;
+    using BoundaryFaces<dim>::first_face;
+    using BoundaryFaces<dim>::normals;
+    using BoundaryFaces<dim>::weights;
+    using BoundaryFaces<dim>::shape_values;
+    using BoundaryFaces<dim>::shape_gradients;
   };
 } // namespace SoftRobot
 

@@ -116,6 +116,7 @@
 #include <deal.II/fe/mapping.h>
 #include <deal.II/lac/affine_constraints.h>
 #include <deal.II/lac/trilinos_vector.h>
+#include <physics/boundary_faces.h>
 #include <physics/cavity_closure.h>
 #include <physics/cell_geometry.h>
 #include <vector>
@@ -125,7 +126,7 @@ namespace SoftRobot
   using namespace dealii;
 
   template <int dim>
-  class FollowerPressure
+  class FollowerPressure : private BoundaryFaces<dim>
   {
   public:
     // The faces of the locally owned cells on `Pneumatics/Pressure
@@ -170,7 +171,7 @@ namespace SoftRobot
     bool
     loads_cell(const unsigned int cell) const
     {
-      return first_face[cell] != first_face[cell + 1];
+      return this->has_faces(cell);
     }
 
     // The reference area of the loaded faces (times the Section), summed
@@ -184,21 +185,17 @@ namespace SoftRobot
     const unsigned int        axis;
     const double              origin;
     const bool                symmetric_tangent;
-    unsigned int              n_q_points    = 0;
-    unsigned int              dofs_per_cell = 0;
-    unsigned int              n_cells       = 0;
-    std::vector<unsigned int> components;
+    const unsigned int        n_cells;
     const std::vector<types::global_dof_index> &dof_indices;
-    // The faces of each cell, [first_face[cell], first_face[cell + 1]), and
-    // per face and point the reference position and normal, the weight
-    // times the section factor, and the values and gradients of the scalar
-    // shape functions.
-    std::vector<unsigned int>   first_face;
-    std::vector<Point<dim>>     points;
-    std::vector<Tensor<1, dim>> normals;
-    std::vector<double>         weights;
-    std::vector<double>         shape_values;
-    std::vector<Tensor<1, dim>> shape_gradients;
+    using BoundaryFaces<dim>::n_q_points;
+    using BoundaryFaces<dim>::dofs_per_cell;
+    using BoundaryFaces<dim>::components;
+    using BoundaryFaces<dim>::first_face;
+    using BoundaryFaces<dim>::points;
+    using BoundaryFaces<dim>::normals;
+    using BoundaryFaces<dim>::weights;
+    using BoundaryFaces<dim>::shape_values;
+    using BoundaryFaces<dim>::shape_gradients;
   };
 } // namespace SoftRobot
 

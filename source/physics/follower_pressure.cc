@@ -8,9 +8,7 @@
 #include <core/config.h>
 #include <deal.II/base/mpi.h>
 #include <deal.II/differentiation/ad.h>
-#include <deal.II/fe/fe_values.h>
 #include <physics/follower_pressure.h>
-#include <set>
 
 namespace SoftRobot
 {
@@ -37,9 +35,8 @@ namespace SoftRobot
 
   // @sect4{FollowerPressure::FollowerPressure}
   //
-  // The reference data of the loaded faces, once: points, normals, weights
-  // (times the section factor) and the scalar shape functions' values and
-  // gradients, as AerodynamicDrag keeps them.
+  // The reference data of the loaded faces are collected by BoundaryFaces;
+  // the end load of the reduced models needs their area.
   template <int dim>
   FollowerPressure<dim>::FollowerPressure(
     const Parameters::AllParameters &parameters,
@@ -49,62 +46,19 @@ namespace SoftRobot
     const Quadrature<dim - 1>       &quadrature,
     const CavityClosure             &closure,
     const bool                       symmetric_tangent)
-    : end_load(parameters.equivalent_area > 0.)
+    : BoundaryFaces<dim>(parameters,
+                         geometry,
+                         mapping,
+                         dof_handler,
+                         quadrature,
+                         parameters.pressure_boundary_ids)
+    , end_load(parameters.equivalent_area > 0.)
     , axis(closure.axis)
     , origin(closure.origin)
     , symmetric_tangent(symmetric_tangent)
+    , n_cells(geometry.n_cells)
     , dof_indices(geometry.dof_indices)
   {
-    const FiniteElement<dim> &fe = dof_handler.get_fe();
-    dofs_per_cell                = fe.n_dofs_per_cell();
-    n_q_points                   = quadrature.size();
-    n_cells                      = geometry.n_cells;
-    components                   = geometry.components;
-    const std::set<types::boundary_id> ids(
-      parameters.pressure_boundary_ids.begin(),
-      parameters.pressure_boundary_ids.end());
-    FEFaceValues<dim> fe_face_values(mapping,
-                                     fe,
-                                     quadrature,
-                                     update_values | update_gradients |
-                                       update_quadrature_points |
-                                       update_normal_vectors |
-                                       update_JxW_values);
-    first_face.assign(1, 0);
-    unsigned int n_faces = 0;
-    for (const auto &cell : dof_handler.active_cell_iterators())
-      if (cell->is_locally_owned())
-        {
-          const double section =
-            parameters.by_id.at(cell->material_id()).section;
-          for (const auto face : cell->face_indices())
-            if (cell->face(face)->at_boundary() &&
-                ids.count(cell->face(face)->boundary_id()) == 1)
-              {
-                fe_face_values.reinit(cell, face);
-                for (const unsigned int q :
-                     fe_face_values.quadrature_point_indices())
-                  {
-                    points.push_back(fe_face_values.quadrature_point(q));
-                    normals.push_back(fe_face_values.normal_vector(q));
-                    weights.push_back(fe_face_values.JxW(q) * section);
-                    for (unsigned int i = 0; i < dofs_per_cell; ++i)
-                      {
-                        shape_values.push_back(
-                          fe_face_values.shape_value_component(i,
-                                                               q,
-                                                               components[i]));
-                        shape_gradients.push_back(
-                          fe_face_values.shape_grad_component(i,
-                                                              q,
-                                                              components[i]));
-                      }
-                  }
-                ++n_faces;
-              }
-          first_face.push_back(n_faces);
-        }
-    Assert(first_face.size() == geometry.n_cells + 1, ExcInternalError());
     if (end_load)
       {
         const double area = reference_area(dof_handler.get_communicator());
