@@ -5,7 +5,8 @@
 // time loop carries from one step to the next, so that a run continued
 // from it (`soft-robot file.prm --restart DIR`) computes the same steps as
 // the uninterrupted run, and its tip trajectory and energies are the same
-// to round-off (bitwise in the tests of tests/CMakeLists.txt). What the
+// to round-off (bit for bit in the tests `cli.restart.*` of
+// tests/CMakeLists.txt). What the
 // time loop carries is:
 // - the time and the number of steps, and the state of the HHT method at
 //   the last converged step: $\mathbf u_n$, $\mathbf v_n$, $\mathbf a_n$
@@ -15,13 +16,20 @@
 // - the energy account, with the HHT damping and traction forces of the
 //   last step that its sums go on from, and the initial total energy;
 // - the time-step controller (the step size, the steps since the last
-//   cut-back, the cut-backs so far) and the counters of the run;
+//   cut-back, the cut-backs so far) and the counters of the run (steps,
+//   Newton and linear iterations, factorizations);
 // - the stiffness matrix $\mathbf K_{n-1}$ from which the modified Newton
 //   method extrapolates the next step's matrix (SoftRobotDynamics::
 //   prepare_step_tangent()), its values in the order of the matrix's
 //   sparsity pattern;
 // - the length of the trajectory file and the records of the field output
 //   (the outputs so far and the time of the next one).
+//
+// What the linear solver keeps -- KLU's pivot sequence, ML's aggregates,
+// both from the first step of the run -- is not stored: the continued run
+// builds them anew for its first matrix. Where the pivots or the
+// aggregates come out otherwise, the continued run agrees with the
+// uninterrupted one to the tolerances of the solvers, not bit for bit.
 //
 // What the state $(\mathbf u_n, \mathbf v_n)$ determines is not stored but
 // computed again at the restart: the stiffness $\mathbf K_n$, the damping
@@ -93,6 +101,7 @@ namespace SoftRobot
     unsigned int linear_iterations      = 0;
     unsigned int last_newton_iterations = 0;
     double       last_residual          = 0.;
+    unsigned int factorizations         = 0;
     double       time_step              = 0.;
     unsigned int steps_since_cutback    = 0;
     unsigned int total_cutbacks         = 0;
@@ -106,6 +115,7 @@ namespace SoftRobot
     double                                      next_output_time  = 0.;
     double                                      last_output_time  = 0.;
     std::vector<std::pair<double, std::string>> pvd_records;
+    std::string                                 xdmf_records;
 
     // The locally owned values of the vectors, by name, and of the
     // stiffness matrix of the step before (if the run keeps it).
@@ -121,11 +131,11 @@ namespace SoftRobot
       archive &format_version &dimension &n_processes &rank &n_dofs &n_cells
         &parameters;
       archive &time &steps &newton_iterations &linear_iterations
-        &last_newton_iterations &last_residual &time_step
+        &last_newton_iterations &last_residual &factorizations &time_step
           &steps_since_cutback &total_cutbacks;
       archive &energies &initial_total_energy;
       archive &trajectory_length &next_output_time &last_output_time
-        &pvd_records;
+        &pvd_records &xdmf_records;
       archive &vectors &has_older_stiffness &older_stiffness_time
         &older_stiffness;
     }

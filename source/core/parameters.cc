@@ -862,11 +862,12 @@ namespace SoftRobot
                         Patterns::Selection("refuse|replace"),
                         "What a run does when its output directory holds "
                         "the output of an earlier run (a trajectory, field "
-                        "output, statistics or spectra). 'refuse': stop "
-                        "before anything is written, with a message (exit "
-                        "code 1). 'replace': remove the earlier run's field "
-                        "output, statistics and spectra, and write the "
-                        "trajectory anew. Other files are never touched.");
+                        "output, statistics, spectra or checkpoints). "
+                        "'refuse': stop before anything is written, with a "
+                        "message (exit code 1). 'replace': remove the "
+                        "earlier run's field output, statistics, spectra and "
+                        "checkpoints, and write the trajectory anew. Other "
+                        "files are never touched.");
       prm.declare_entry("Output interval",
                         "0.05",
                         Patterns::Double(0),

@@ -472,7 +472,8 @@ namespace SoftRobot
                                           triangulation,
                                           *mapping,
                                           subdivisions,
-                                          mpi_communicator);
+                                          mpi_communicator,
+                                          checkpoint.xdmf_records);
 
     if (!restart)
       {

@@ -71,6 +71,7 @@ namespace SoftRobot
     data.linear_iterations      = counters.linear_iterations;
     data.last_newton_iterations = counters.last_newton_iterations;
     data.last_residual          = counters.last_residual;
+    data.factorizations         = linear_solver.n_preparations();
     const TimeStepController::State controller = step_controller.state();
     data.time_step           = controller.time_step;
     data.steps_since_cutback = controller.steps_since_cutback;
@@ -88,6 +89,8 @@ namespace SoftRobot
     data.last_output_time  = last_output_time;
     if (field_output)
       data.pvd_records = field_output->records();
+    if (xdmf_output)
+      data.xdmf_records = xdmf_output->records();
 
     for (const auto &[name, vector] :
          {std::make_pair("u", &current.u),
@@ -144,6 +147,7 @@ namespace SoftRobot
     counters.linear_iterations      = data.linear_iterations;
     counters.last_newton_iterations = data.last_newton_iterations;
     counters.last_residual          = data.last_residual;
+    linear_solver.set_n_preparations(data.factorizations);
     step_controller.set_state(
       {data.time_step, data.steps_since_cutback, data.total_cutbacks});
     AssertThrow(data.energies.size() == 5, ExcInternalError());

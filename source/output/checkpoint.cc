@@ -233,10 +233,6 @@ namespace SoftRobot
                              std::to_string(n_cells) + " cells and " +
                              std::to_string(n_dofs) +
                              " (has the mesh file changed?)."));
-      AssertThrow(!parameters.write_hdf5,
-                  ExcMessage(where + "a restart of a run with Output/Write "
-                                     "HDF5 = true is not available; "
-                                     "continue it with Write VTU only."));
     }
 
 

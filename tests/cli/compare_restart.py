@@ -9,8 +9,9 @@ must every VTU piece the PVD records name (but for the time of writing in
 deal.II's comment); with one, every value of the
 trajectory must agree with the uninterrupted run's to T times the largest
 magnitude of its column. In both cases the PVD records must list the same
-times, and the run statistics the same numbers of steps, Newton iterations
-and cut-backs.
+times, the XDMF records (if any) must be the same text, and the run
+statistics the same numbers of steps, Newton and linear
+iterations, factorizations and cut-backs.
 """
 import json
 import sys
@@ -87,9 +88,18 @@ def main():
         print(f"compare_restart: {len(records_part)} outputs at the same times, "
               f"{same_pieces} VTU pieces identical")
 
+    if (full / "solution.xdmf").exists():
+        same = ((full / "solution.xdmf").read_text()
+                == (part / "solution.xdmf").read_text())
+        print(f"compare_restart: the XDMF records are {'' if same else 'not '}"
+              "the same")
+        if not same:
+            failures.append("the XDMF records differ")
+
     statistics_full = json.loads((full / "run_statistics.json").read_text())
     statistics_part = json.loads((part / "run_statistics.json").read_text())
-    for key in ("steps", "newton_iterations", "cutbacks", "end_time"):
+    for key in ("steps", "newton_iterations", "linear_iterations",
+                "factorizations_or_amg_setups", "cutbacks", "end_time"):
         if statistics_full[key] != statistics_part[key]:
             failures.append(f"{key}: {statistics_part[key]} after the restart, "
                             f"{statistics_full[key]} uninterrupted")
