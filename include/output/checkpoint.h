@@ -205,7 +205,8 @@ namespace SoftRobot
   // handler is installed for one delivery). Under mpirun, signal mpirun:
   // it forwards SIGTERM to every process; the loop agrees on the flag with
   // a reduction, so that all processes stop after the same step even if
-  // only one received the signal.
+  // only one received the signal. (The exit code of such a run is then
+// mpirun's, 1 for Open MPI; the message is the program's.)
   class InterruptionHandler
   {
   public:
