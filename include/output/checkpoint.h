@@ -52,6 +52,10 @@
 // output/safe_file.h) only when every process has written its file: a run
 // killed while it writes a checkpoint leaves the previous one valid.
 //
+// The run statistics of a continued run count the steps, iterations,
+// factorizations and cut-backs of the whole run, and the wall time of its
+// own part.
+//
 // A checkpoint also records the parameters of its run (the fingerprint of
 // Parameters::AllParameters, every entry but the end time and the
 // checkpoint and progress intervals), the dimension, the mesh size and the
@@ -120,9 +124,9 @@ namespace SoftRobot
     // The locally owned values of the vectors, by name, and of the
     // stiffness matrix of the step before (if the run keeps it).
     std::map<std::string, std::vector<double>> vectors;
-    bool                                        has_older_stiffness = false;
-    double                                      older_stiffness_time = 0.;
-    std::vector<double>                         older_stiffness;
+    bool                                       has_older_stiffness  = false;
+    double                                     older_stiffness_time = 0.;
+    std::vector<double>                        older_stiffness;
 
     template <class Archive>
     void
@@ -133,7 +137,7 @@ namespace SoftRobot
       archive &time &steps &newton_iterations &linear_iterations
         &last_newton_iterations &last_residual &factorizations &time_step
           &steps_since_cutback &total_cutbacks;
-      archive &energies &initial_total_energy;
+      archive &energies        &initial_total_energy;
       archive &trajectory_length &next_output_time &last_output_time
         &pvd_records &xdmf_records;
       archive &vectors &has_older_stiffness &older_stiffness_time
@@ -206,7 +210,7 @@ namespace SoftRobot
   // it forwards SIGTERM to every process; the loop agrees on the flag with
   // a reduction, so that all processes stop after the same step even if
   // only one received the signal. (The exit code of such a run is then
-// mpirun's, 1 for Open MPI; the message is the program's.)
+  // mpirun's, 1 for Open MPI; the message is the program's.)
   class InterruptionHandler
   {
   public:

@@ -481,6 +481,7 @@ namespace SoftRobot
         output_results();
       }
     const InterruptionHandler interruption_handler;
+    const double              start_time = current.time;
     try
       {
         while (advance_one_step())
@@ -494,7 +495,7 @@ namespace SoftRobot
                 counters.steps % parameters.progress_interval == 0)
               {
                 const double elapsed = wall_clock.wall_time();
-                const double left    = elapsed / current.time *
+                const double left    = elapsed / (current.time - start_time) *
                                     (parameters.end_time - current.time);
                 pcout << "step " << std::setw(5) << counters.steps
                       << "  t = " << std::fixed << std::setprecision(4)

@@ -8,7 +8,6 @@
 
 #include <core/config.h>
 #include <core/soft_robot_dynamics.h>
-
 #include <sstream>
 
 namespace SoftRobot
@@ -32,7 +31,8 @@ namespace SoftRobot
       return;
 
     trajectory.close();
-    const std::string  directory = Checkpoint::directory_of(parameters.output_directory);
+    const std::string directory =
+      Checkpoint::directory_of(parameters.output_directory);
     std::ostringstream message;
     message << (signal_number == SIGINT ? "SIGINT" : "SIGTERM")
             << " at t = " << current.time << " s, step " << counters.steps
@@ -73,9 +73,9 @@ namespace SoftRobot
     data.last_residual          = counters.last_residual;
     data.factorizations         = linear_solver.n_preparations();
     const TimeStepController::State controller = step_controller.state();
-    data.time_step           = controller.time_step;
-    data.steps_since_cutback = controller.steps_since_cutback;
-    data.total_cutbacks      = controller.total_cutbacks;
+    data.time_step                             = controller.time_step;
+    data.steps_since_cutback                   = controller.steps_since_cutback;
+    data.total_cutbacks                        = controller.total_cutbacks;
 
     data.energies             = {energy.kinetic,
                                  energy.strain,
@@ -108,7 +108,8 @@ namespace SoftRobot
       {
         data.has_older_stiffness  = true;
         data.older_stiffness_time = stiffness_history.newer_time;
-        data.older_stiffness = Checkpoint::local_values(*stiffness_history.newer);
+        data.older_stiffness =
+          Checkpoint::local_values(*stiffness_history.newer);
       }
 
     Checkpoint::write(Checkpoint::directory_of(parameters.output_directory),
@@ -132,7 +133,7 @@ namespace SoftRobot
   CheckpointData
   SoftRobotDynamics<dim>::restore_checkpoint()
   {
-    TimerOutput::Scope timer_section(computing_timer, "Restart");
+    TimerOutput::Scope   timer_section(computing_timer, "Restart");
     const CheckpointData data =
       Checkpoint::read(parameters.restart_directory, mpi_communicator);
     Checkpoint::check_compatible(data,
@@ -187,7 +188,7 @@ namespace SoftRobot
     double deviation = difference.linfty_norm();
     difference       = current.damping_force;
     difference -= stored_damping;
-    deviation = std::max(deviation, difference.linfty_norm());
+    deviation              = std::max(deviation, difference.linfty_norm());
     current.internal_force = stored_internal;
     current.damping_force  = stored_damping;
 
@@ -215,9 +216,9 @@ namespace SoftRobot
 
 
   // The explicit instantiations of this file's member functions.
-#define SOFT_ROBOT_INSTANTIATE(dim)                                   \
-  template void SoftRobotDynamics<dim>::checkpoint_or_stop();         \
-  template void SoftRobotDynamics<dim>::write_checkpoint();           \
+#define SOFT_ROBOT_INSTANTIATE(dim)                                     \
+  template void           SoftRobotDynamics<dim>::checkpoint_or_stop(); \
+  template void           SoftRobotDynamics<dim>::write_checkpoint();   \
   template CheckpointData SoftRobotDynamics<dim>::restore_checkpoint();
   SOFT_ROBOT_FOR_EACH_DIMENSION(SOFT_ROBOT_INSTANTIATE)
 #undef SOFT_ROBOT_INSTANTIATE

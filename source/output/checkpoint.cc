@@ -63,7 +63,7 @@ namespace SoftRobot
           const CheckpointData &data,
           const MPI_Comm        mpi_communicator)
     {
-      const bool  root = Utilities::MPI::this_mpi_process(mpi_communicator) == 0;
+      const bool root = Utilities::MPI::this_mpi_process(mpi_communicator) == 0;
       std::string failure;
       std::string slot;
       if (root)
@@ -101,10 +101,13 @@ namespace SoftRobot
       if (root)
         try
           {
-            write_file_atomically(directory + "/latest", [&](std::ostream &out) {
-              out << slot << "\nstep " << data.steps << "\ntime "
-                  << data.time << "\nprocesses " << data.n_processes << '\n';
-            });
+            write_file_atomically(directory + "/latest",
+                                  [&](std::ostream &out) {
+                                    out << slot << "\nstep " << data.steps
+                                        << "\ntime " << data.time
+                                        << "\nprocesses " << data.n_processes
+                                        << '\n';
+                                  });
           }
         catch (WriteFailure &error)
           {
@@ -123,7 +126,8 @@ namespace SoftRobot
       if (!std::filesystem::exists(directory + "/latest") &&
           std::filesystem::exists(directory_of(directory) + "/latest"))
         directory = directory_of(directory);
-      const std::string where = "Cannot restart from '" + directory_name + "': ";
+      const std::string where =
+        "Cannot restart from '" + directory_name + "': ";
       AssertThrow(std::filesystem::exists(directory + "/latest"),
                   ExcMessage(where +
                              "it holds no checkpoint (no file 'latest' there "
@@ -133,10 +137,11 @@ namespace SoftRobot
 
       const unsigned int n_processes =
         Utilities::MPI::n_mpi_processes(mpi_communicator);
-      const unsigned int rank = Utilities::MPI::this_mpi_process(mpi_communicator);
-      std::ifstream      record(directory + "/latest");
-      std::string        slot, word;
-      unsigned int       written_by = 0;
+      const unsigned int rank =
+        Utilities::MPI::this_mpi_process(mpi_communicator);
+      std::ifstream record(directory + "/latest");
+      std::string   slot, word;
+      unsigned int  written_by = 0;
       record >> slot;
       while (record >> word)
         if (word == "processes")
@@ -166,7 +171,14 @@ namespace SoftRobot
         {
           problem = "'" + name + "' cannot be read (" + error.what() + ").";
         }
-      if (problem.empty() && (data.rank != rank || data.n_processes != n_processes))
+      if (problem.empty() &&
+          data.format_version != CheckpointData().format_version)
+        problem = "'" + name +
+                  "' is of another version of the checkpoint "
+                  "format (" +
+                  std::to_string(data.format_version) + ").";
+      if (problem.empty() &&
+          (data.rank != rank || data.n_processes != n_processes))
         problem = "'" + name + "' is not the part of process " +
                   std::to_string(rank) + ".";
       // The first problem on any process, known to all.
@@ -208,13 +220,12 @@ namespace SoftRobot
       const auto now    = entries(parameters.fingerprint);
       for (const auto &[entry, value] : now)
         {
-          const auto old = stored.find(entry);
+          const auto        old = stored.find(entry);
           const std::string old_value =
             (old == stored.end()) ? "(not an entry)" : old->second;
           AssertThrow(old_value == value,
                       ExcMessage(where + "the checkpoint's run had " + entry +
-                                 " = " + old_value + ", this run has " +
-                                 value +
+                                 " = " + old_value + ", this run has " + value +
                                  ". Only Time integration/End time, "
                                  "Output/Checkpoint interval and "
                                  "Output/Progress interval may change."));
@@ -329,7 +340,7 @@ namespace SoftRobot
 
   InterruptionHandler::InterruptionHandler()
   {
-    received_signal = 0;
+    received_signal         = 0;
     struct sigaction action = {};
     action.sa_handler       = record_signal;
     sigemptyset(&action.sa_mask);

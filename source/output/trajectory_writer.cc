@@ -74,14 +74,14 @@ namespace SoftRobot
   // are cut off, so that the continued run writes them again, and the
   // file ends up as the uninterrupted run's.
   void
-  TrajectoryWriter::reopen(const std::string &file_name,
+  TrajectoryWriter::reopen(const std::string  &file_name,
                            const std::uint64_t length)
   {
     name = file_name;
     std::string problem;
     if (root)
       {
-        std::error_code   error;
+        std::error_code      error;
         const std::uintmax_t size = std::filesystem::file_size(name, error);
         if (error)
           problem = "cannot open the trajectory '" + name +
@@ -99,8 +99,8 @@ namespace SoftRobot
       std::error_code error;
       std::filesystem::resize_file(name, length, error);
       if (error)
-        throw WriteFailure("Cannot cut '" + name + "' back to the checkpoint: " +
-                           error.message());
+        throw WriteFailure("Cannot cut '" + name +
+                           "' back to the checkpoint: " + error.message());
       file.open(name, std::ios::app | std::ios::ate);
       check_written(file, name);
     });

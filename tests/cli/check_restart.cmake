@@ -13,12 +13,14 @@
 #         [-DOVERRIDES=<Subsection/Entry=value|...>]
 #         [-DRESTART_OVERRIDES=<...>] [-DEXPECTED_RESTART_EXIT=<code>]
 #         [-DEXPECTED_MESSAGE=<regex>] [-DLAUNCHER=<command|...>]
+#         [-DRESTART_SERIAL=ON]
 #         [-DCOMPARE=<command|...>] -P check_restart.cmake
 #
 # INTERRUPT is the environment variable of the test hook, set for the
 # interrupted run only. OVERRIDES are passed to all runs as --set options,
-# RESTART_OVERRIDES to the restart only; '%' stands for ';'. COMPARE is run
-# in the work directory with the arguments 'full part'.
+# RESTART_OVERRIDES to the restart only; '%' stands for ';'. LAUNCHER
+# (mpiexec -n 2) runs the program, except the restart with RESTART_SERIAL.
+# COMPARE is run in the work directory with the arguments 'full part'.
 file(REMOVE_RECURSE ${WORK_DIRECTORY})
 file(MAKE_DIRECTORY ${WORK_DIRECTORY})
 
@@ -74,6 +76,9 @@ endif()
 
 if(NOT DEFINED EXPECTED_RESTART_EXIT)
   set(EXPECTED_RESTART_EXIT 0)
+endif()
+if(RESTART_SERIAL)
+  set(launcher)
 endif()
 run_program("restart" part ${EXPECTED_RESTART_EXIT} ${restart_only}
             --restart part/checkpoint)
