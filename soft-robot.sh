@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: LGPL-2.1-or-later
 # The two commands of the README, for a fresh Debian 12 machine (as root):
 #
 #   ./soft-robot.sh demo       install what is missing, build in Release, run
@@ -67,11 +68,12 @@ case "${1:-}" in
     done
     ;;
   test)
-    # python3 for the check of doc/results.md; doxygen, LaTeX and
+    # python3 for the check of doc/results.md, clang-format 14 for that of
+    # the sources' format; doxygen, LaTeX and
     # Ghostscript for the annotated source (target doc); h5py for the
     # command-line tests that read the HDF5 output back, numpy and
     # matplotlib for those of the plot script.
-    packages+=(python3 doxygen texlive-latex-extra ghostscript python3-h5py
+    packages+=(python3 clang-format-14 doxygen texlive-latex-extra ghostscript python3-h5py
                python3-numpy python3-matplotlib)
     install_missing_packages
     build Debug build-debug -DSOFT_ROBOT_BUILD_TESTS=ON

@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: LGPL-2.1-or-later
 """Plot tip trajectories written by soft-robot (one figure per file).
 
 Usage: python3 doc/plot_tip_trajectory.py OUTPUT.png TRAJECTORY.csv [LABEL] [COMMIT]

@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: LGPL-2.1-or-later
 """Checks that doc/results.md lists the registered tests, no more and no
 fewer. Registered as the ctest doc.results_lists_every_test.
 

@@ -1,3 +1,5 @@
+# SPDX-License-Identifier: LGPL-2.1-or-later
+
 """The command line and the session record shared by the study scripts
 doc/locking/run_locking.py, doc/error_vs_runtime/run_error_vs_runtime.py and
 doc/twisting_column/run_twisting_column.py: which cases to run, running

@@ -1,4 +1,5 @@
 #!/usr/bin/python3
+# SPDX-License-Identifier: LGPL-2.1-or-later
 """Write the validation report of the 30 bellows scenes against the study.
 
 Usage: /usr/bin/python3 doc/validation_report.py OUTPUT_DIR DOC_DIR

@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: LGPL-2.1-or-later
 """Check the parametric bellows geometry and its meshes against the reference.
 
 Usage:

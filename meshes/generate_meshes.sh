@@ -1,4 +1,5 @@
 #!/bin/bash
+# SPDX-License-Identifier: LGPL-2.1-or-later
 # Writes the bellows meshes meshes/bellows_<model>_<level>.msh from
 # meshes/bellows.geo with gmsh (Debian: apt-get install gmsh; tested with 4.8.4)
 # and prints their element and node counts.

@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
+
 // @sect3{Calibration commands}
 //
 // Two commands that produce the numbers of the bellows scenes which are not

@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
+
 // @sect3{The main program}
 //
 // Reads the parameter file (whose entries do not depend on the dimension),

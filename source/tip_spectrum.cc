@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
+
 // @sect3{The tip-spectrum program}
 //
 // <code>tip-spectrum</code> reads a tip trajectory (from the simulator or

@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
+
 // @sect3{Test of the angular momentum}
 //
 // A square plate (2D) or a cube (3D) of side a in rigid rotation about its

@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
+
 // Checks the committed coarse meshes of the bellows actuator
 // (meshes/bellows_<model>_coarse.msh, written by meshes/generate_meshes.sh
 // from meshes/bellows.geo) as the program reads them: with deal.II's

@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
+
 // Checks the bellows scenes of parameters/bellows/ as the program reads
 // them (fast: no simulation; the scenes are run for a few steps by the
 // ctest entries scene.<name> of tests/CMakeLists.txt):

@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
+
 // @sect3{Tests of the damping laws}
 //
 // The damping must come from the deformation only: the Kelvin-Voigt stress
@@ -516,42 +518,63 @@ TYPED_TEST(DampingTest, SpinningBodyKeepsItsRotation)
 // HHTStepper), and for the rotation of a stiff body, which the elastic
 // forces keep at its radius, the energy goes out of the angular velocity.
 // The loss over three revolutions (after the first, which holds the
-// start-up of the centrifugal stretch) must therefore fall with the third
-// power of the step: halving it divides the loss of kinetic energy and of
-// angular momentum by 8, within 25 % for the higher-order terms. At
-// $\Omega\Delta t = 0.1$ the kinetic energy falls by 1.2e-3 over the three
-// revolutions and the angular momentum by half of that, as for a rigid
-// body that slows down ($T \propto \Omega^2$, $L \propto\Omega$); that is
-// 1.8 times what $\bar\xi$ of a free oscillation at $\Omega$ would take,
-// $1 - \exp(-12\pi\bar\xi) = 6.6\cdot10^{-4}$ (the radial stiffness of the
-// body makes the rotation no free oscillation); the test allows up to 2.5
-// times that at $\Omega\Delta t = 0.1$. (The trapezoidal rule, alpha = 0,
-// conserves energy for linear problems but is unstable for this one; see
-// above.)
+// start-up of the centrifugal stretch) must therefore fall at least with
+// the third power of the step. It falls faster: halving $\Omega\Delta t$
+// = 0.1 divides it by 10.8 in 2D and 3D alike, and halving 0.05 by 23 (2D).
+// So the leading term of a free oscillation does not describe the spinning
+// body's loss at these steps (a loss $\propto(\Omega\Delta t)^3(1 +
+// c\,\Omega\Delta t)$, which the first ratio would suggest, predicted 9.7
+// for the second); what the test asserts is the bound, at least third
+// order at every halving, and the size of the loss at the coarsest step. At
+// $\Omega\Delta t = 0.1$ the kinetic energy falls by 1.0e-3 over the
+// three revolutions and the angular momentum by half of that, as for a
+// rigid body that slows down ($T \propto \Omega^2$, $L \propto\Omega$);
+// that is 1.5 times what $\bar\xi$ of a free oscillation at $\Omega$
+// would take, $1 - \exp(-12\pi\bar\xi) = 6.6\cdot10^{-4}$ (the radial
+// stiffness of the body makes the rotation no free oscillation); the test
+// allows up to 2.5 times that. (The trapezoidal rule, alpha = 0, conserves
+// energy for linear problems but is unstable for this one; see above.)
 TYPED_TEST(DampingTest, UndampedSpinDecaysAtTheAlgorithmicRate)
 {
   constexpr int dim = TypeParam::value;
   if (dim == 1)
     GTEST_SKIP() << "a 1D body cannot rotate";
-  const double          alpha = -0.25;
-  std::array<double, 2> energy_loss, momentum_loss;
-  for (unsigned int k = 0; k < 2; ++k)
+  const double alpha = -0.25;
+  // Three steps in 2D, two in 3D, where each run costs ten times more.
+  const std::vector<double> steps =
+    (dim == 2) ? std::vector<double>{0.01, 0.005, 0.0025} :
+                 std::vector<double>{0.01, 0.005};
+  std::vector<double> energy_loss, momentum_loss;
+  for (const double dt : steps)
     {
-      const SpinResult run =
-        spin<dim>(0., "Kelvin-Voigt", 1, k == 0 ? 0.01 : 0.005, alpha, 4.);
-      energy_loss[k]   = 1. - run.kinetic / run.kinetic_1;
-      momentum_loss[k] = 1. - run.angular_momentum / run.angular_momentum_1;
+      const SpinResult run = spin<dim>(0., "Kelvin-Voigt", 1, dt, alpha, 4.);
+      energy_loss.push_back(1. - run.kinetic / run.kinetic_1);
+      momentum_loss.push_back(1. - run.angular_momentum /
+                              run.angular_momentum_1);
     }
   const double xi =
     -alpha * (1. + alpha) * (1. + alpha) * std::pow(0.1, 3) / 8.;
   const double free_oscillation = 1. - std::exp(-12. * M_PI * xi);
-  std::cout << dim << "D: kinetic energy lost in revolutions 2-4 "
-            << energy_loss[0] << " (Omega dt = 0.1), " << energy_loss[1]
-            << " (0.05); angular momentum " << momentum_loss[0] << ", "
-            << momentum_loss[1] << "; free oscillation at Omega dt = 0.1 "
-            << free_oscillation << std::endl;
-  EXPECT_NEAR(energy_loss[0] / energy_loss[1], 8., 2.);
-  EXPECT_NEAR(momentum_loss[0] / momentum_loss[1], 8., 2.);
+  std::cout << dim << "D: kinetic energy lost in revolutions 2-4";
+  for (unsigned int k = 0; k < steps.size(); ++k)
+    std::cout << " " << energy_loss[k] << " (Omega dt = " << 10. * steps[k]
+              << ")";
+  std::cout << "; angular momentum";
+  for (const double loss : momentum_loss)
+    std::cout << " " << loss;
+  std::cout << "; free oscillation at Omega dt = 0.1 " << free_oscillation
+            << std::endl;
+  for (unsigned int k = 0; k + 1 < steps.size(); ++k)
+    {
+      const double energy_ratio   = energy_loss[k] / energy_loss[k + 1];
+      const double momentum_ratio = momentum_loss[k] / momentum_loss[k + 1];
+      std::cout << "  ratio of the losses, dt = " << steps[k] << " / "
+                << steps[k + 1] << ": " << energy_ratio << " (energy), "
+                << momentum_ratio << " (angular momentum)" << std::endl;
+      // At least third order.
+      EXPECT_GT(energy_ratio, 0.9 * 8.);
+      EXPECT_NEAR(momentum_ratio, energy_ratio, 0.02 * energy_ratio);
+    }
   EXPECT_GT(energy_loss[0], 0.);
   EXPECT_LT(energy_loss[0], 2.5 * free_oscillation);
   EXPECT_NEAR(momentum_loss[0], 0.5 * energy_loss[0], 0.05 * energy_loss[0]);

@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
+
 // @sect3{Tests of the dense least-squares solvers of the analysis}
 //
 // The spectral analysis hands every least-squares problem to LAPACK

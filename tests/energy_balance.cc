@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
+
 // @sect3{Test of the energy bookkeeping}
 //
 // The trajectory's energy balance $\mathcal B = T + \Pi + V_g - W + D -

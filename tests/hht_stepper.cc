@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
+
 // @sect3{Tests of the HHT-alpha time stepper on the model problem}
 //
 // Every property of a linear time integrator shows on the single-degree-of-

@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
+
 // @sect3{Tests of the linear solver}
 //
 // LinearSolver (source/solvers/linear_solver.cc) relies on Trilinos in

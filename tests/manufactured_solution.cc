@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
+
 // @sect3{Convergence for a manufactured solution of finite-strain elastodynamics}
 //
 // We choose a smooth motion of the box $[0, L]^{dim}$ that vanishes on its

@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
+
 // @sect3{Tests of the damped-mode fit}
 //
 // fit_damped_modes() (source/analysis/modal_fit.cc) minimises the misfit of

@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
+
 // @sect3{Tests of the accelerated modified Newton method}
 //
 // The time steps' modified Newton method keeps one matrix per step and

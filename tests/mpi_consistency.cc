@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
+
 // @sect3{The same motion on one and on several MPI processes}
 //
 // Run under `mpiexec -n 2` and `-n 3` (see tests/CMakeLists.txt): the

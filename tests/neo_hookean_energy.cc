@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
+
 // @sect3{Tests of the neo-Hookean strain energy and its derivatives}
 //
 // NeoHookeanEnergy<dim>::evaluate() returns the energy density $\Psi$, the

@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
+
 // @sect3{Tests of NewtonSolver and AndersonAcceleration}
 //
 // The solver is run on small systems $\mathbf r(\mathbf u) = \mathbf 0$

@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
+
 // @sect3{Tests of the solver against closed forms}
 //
 // Each test sets up a small body through the same parameter interface a

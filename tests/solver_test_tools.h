@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
+
 // Tools shared by the solver tests: parameter texts for small bodies, and
 // the dense linearised eigenproblem of a model.
 

@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
+
 // @sect3{Tests of the spectral analysis of tip trajectories}
 //
 // The analysis is checked against signals whose frequencies and damping

@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
+
 // @sect3{The fast global addition builds the reference's system}
 //
 // DirectAddressAssembler adds the cells' contributions at precomputed

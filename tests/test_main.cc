@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
+
 // The main() shared by all test executables: deal.II's Trilinos wrappers
 // need MPI, so it is initialised here once for every GoogleTest case.
 

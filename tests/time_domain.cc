@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
+
 // @sect3{Tests of the turning points and the logarithmic decrement}
 //
 // The line through the logarithms of the half-cycle amplitudes is a

@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
+
 // @sect3{Tests of TimeStepController}
 //
 // The controller is driven by a time loop like the program's, in which a

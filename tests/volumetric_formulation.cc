@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
+
 // @sect3{Tests of the linearisation and of the mean-dilatation formulation}
 //
 // The solver's internal force must be the gradient of its strain energy,

@@ -1,4 +1,5 @@
 #!/usr/bin/python3
+# SPDX-License-Identifier: LGPL-2.1-or-later
 """The damping of the swinging actuator against the time step: does the
 swing's frequency and damping converge as the step shrinks, and what does
 the start-up of a release do? Runs the planar and the spherical pendulum of
@@ -86,7 +87,7 @@ def run_case(build, output_root, name, timeout, threads):
     for entry in QUIET + overrides + [f"Problem/Output directory={output}"]:
         command += ["--set", entry]
     environment = dict(os.environ, DEAL_II_NUM_THREADS=str(threads))
-    result = run_program(command, environment, output, timeout)
+    _, result = run_program(command, environment, output, timeout)
     result.update(analyse(build, output))
     result.update({"name": name, "label": label, "scene": scene})
     (output / "result.json").write_text(json.dumps(result, indent=1) + "\n")

@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: LGPL-2.1-or-later
 """The annotated source as doxygen pages, the way deal.II renders its
 tutorial programs: the comments are the text, the code is shown between
 them.
@@ -183,6 +184,9 @@ def blocks(source):
     """The file as a list of ("text" or "code", lines, first line number)."""
     result = []
     for number, line in enumerate(source.splitlines(), start=1):
+        # The licence tag of the first line is for tools, not for readers.
+        if number == 1 and "SPDX-License-Identifier" in line:
+            continue
         comment = re.match(r"\s*//(.*)$", line)
         kind = "text" if comment else "code"
         if comment:

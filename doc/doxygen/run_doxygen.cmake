@@ -1,3 +1,5 @@
+# SPDX-License-Identifier: LGPL-2.1-or-later
+
 # The commands of the target `doc` (doc/CMakeLists.txt), run in the build's
 # doc/ directory:
 #

@@ -1,4 +1,5 @@
 #!/usr/bin/python3
+# SPDX-License-Identifier: LGPL-2.1-or-later
 """Error against run time (issue 6): the three experiments with Dragon Skin
 20 (baseline parameter set) over meshes, element degrees, volumetric
 formulations and time steps, with the 3D models and the reduced ones (the

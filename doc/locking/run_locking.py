@@ -1,4 +1,5 @@
 #!/usr/bin/python3
+# SPDX-License-Identifier: LGPL-2.1-or-later
 """The locking study (issue 6, "show locking and its cure"): the
 experiment-1 tip frequency against refinement for kappa/mu = 1e2, 1e3 and
 1e4, with linear and with quadratic tetrahedra. Runs the cases with the

@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: LGPL-2.1-or-later
 """Run the CalculiX peer of the speed benchmark's headline case.
 
 The headline case is parameters/bellows/vertical_ds20_3d.prm (with the

@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: LGPL-2.1-or-later
 """The speed benchmark: runs named cases with the Release build of
 soft-robot, one at a time, and writes doc/performance.md.
 
@@ -72,6 +73,10 @@ CASES = [
     ("headline_no_output", HEADLINE,
      ["Output/Write VTU=false"], 1,
      "the same without VTU output"),
+    ("headline_reference_assembly", HEADLINE,
+     ["Finite element/Direct addresses=false"], 1,
+     "the same with the reference global addition (AffineConstraints) "
+     "instead of the direct-address assembler"),
     # The refinement series: the quarter model's gmsh meshes, the first
     # 0.5 s each, with the sparse direct solvers and with CG and algebraic
     # multigrid; the extrafine mesh with CG solving to 1e-8 instead of the

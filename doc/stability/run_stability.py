@@ -1,4 +1,5 @@
 #!/usr/bin/python3
+# SPDX-License-Identifier: LGPL-2.1-or-later
 """The stability study (issue 6, "stability on stiff and extreme cases"):
 runs stiff and extreme variants of the bellows scenes with the Release
 build of soft-robot, one at a time, and writes doc/stability.md with its

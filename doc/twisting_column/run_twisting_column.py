@@ -1,4 +1,5 @@
 #!/usr/bin/python3
+# SPDX-License-Identifier: LGPL-2.1-or-later
 """The twisting column (issue 6: a standard large-deformation elastodynamics
 benchmark besides the actuator): parameters/benchmarks/twisting_column.prm
 with Poisson's ratio 0.45 and 0.499, with and without the mean-dilatation

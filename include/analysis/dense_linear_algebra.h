@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
+
 // @sect3{Dense linear algebra for the analysis}
 //
 // Implemented in source/analysis/dense_linear_algebra.cc.

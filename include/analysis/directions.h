@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
+
 // @sect3{Directions of motion}
 //
 // Implemented in source/analysis/directions.cc.

@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
+
 // @sect3{Fitting damped modes}
 //
 // Implemented in source/analysis/modal_fit.cc, which also explains the

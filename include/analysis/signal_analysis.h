@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
+
 // @sect3{The analysis of one signal}
 //
 // Implemented in source/analysis/signal_analysis.cc.

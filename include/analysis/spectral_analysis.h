@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
+
 // @sect3{Spectral analysis of a tip trajectory}
 //
 // Implemented in source/analysis/spectral_analysis.cc.

@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
+
 // @sect3{Peaks of the spectrum and their half-power bandwidths}
 //
 // Implemented in source/analysis/spectral_peaks.cc.

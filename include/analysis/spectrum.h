@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
+
 // @sect3{The zero-padded magnitude spectrum}
 //
 // Implemented in source/analysis/spectrum.cc.

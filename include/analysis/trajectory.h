@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
+
 // @sect3{The tip trajectory as recorded}
 //
 // Implemented in source/analysis/trajectory.cc.

@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
+
 // @sect3{Truncation theory of the half-power bandwidth}
 //
 // Implemented in source/analysis/truncation_theory.cc, which also explains

@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
+
 // @sect3{Uniform sampling of a trajectory}
 //
 // Implemented in source/analysis/uniform_sampling.cc.

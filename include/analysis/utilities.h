@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
+
 // @sect3{Helpers shared by the files of the spectral analysis}
 //
 // Implemented in source/analysis/utilities.cc.

@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
+
 // @sect3{What an assembly reports besides its vectors and matrices}
 //
 // Newton's method needs more of an evaluation of the residual than the

@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
+
 // @sect3{What one cell contributes}
 //
 // The assembly is split into two parts that know nothing of each other:

@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
+
 // @sect3{The fast global addition: precomputed addresses}
 //
 // SystemAssembler adds a cell matrix through Epetra's SumIntoGlobalValues,
@@ -13,7 +15,7 @@
 // a matrix entry, not their terms: tests/system_assembler.cc checks that
 // both classes build the same matrices and vectors to round-off, serially
 // and on several processes. The gain on the headline benchmark is stated
-// in doc/performance.md.
+// in doc/performance_discussion.md (item 7).
 //
 // A constrained dof's row and column are left out, and its diagonal gets
 // the absolute value of the cell matrix's diagonal entry (if that is zero,

@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
+
 // @sect3{The global addition: from cell contributions to the global system}
 //
 // A SystemAssembler runs the physics (a function that integrates over one

@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
+
 // @sect3{The dimensions the program is instantiated for}
 //
 // Every class template of the program is defined in a source file and

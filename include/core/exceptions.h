@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
+
 // @sect3{How a run fails}
 //
 // Five things can stop a time step or a run, and each has its own type, so

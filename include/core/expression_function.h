@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
+
 // @sect3{Functions from the expressions of the parameter file}
 //
 // Initial fields and tractions are muparser expressions with one component

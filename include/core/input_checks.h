@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
+
 // @sect3{Checking the input before anything is written}
 //
 // A run must never destroy an earlier result, and an error in the input

@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
+
 // @sect3{The mesh}
 //
 // The mesh comes either from one of deal.II's generators or from a gmsh

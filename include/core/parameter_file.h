@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
+
 // @sect3{Reading a parameter file}
 //
 // ParameterHandler reads `include` statements itself, but resolves the file

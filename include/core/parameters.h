@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
+
 // @sect3{Run-time parameters}
 //
 // Everything a user chooses is read from a `.prm` file through deal.II's

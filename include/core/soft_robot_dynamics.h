@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
+
 // @sect3{The SoftRobotDynamics class template}
 //
 // This is the simulator: a hyperelastic body that moves under gravity,

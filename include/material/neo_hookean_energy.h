@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
+
 // @sect3{The neo-Hookean strain energy and its automatic differentiation}
 //
 // The silicone rubbers of soft robots (Ecoflex, Dragon Skin) are modelled

@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
+
 // @sect3{The output directory}
 //
 // A run writes into its `Problem/Output directory` only after all of its

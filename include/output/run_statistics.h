@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
+
 // @sect3{The cost of a run}
 //
 // What a run cost, in a small machine-readable file, `run_statistics.json`

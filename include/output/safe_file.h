@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
+
 // @sect3{Writing files so that nothing is lost or half written}
 //
 // A run of an hour must not end with a result that looks complete and is

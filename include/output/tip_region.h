@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
+
 // @sect3{The motion of the tip}
 //
 // The quantity a soft-robot experiment tracks: the motion of the tip. For a

@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
+
 // @sect3{The tip trajectory file}
 //
 // One row per time step in a CSV file: the time series that the spectral

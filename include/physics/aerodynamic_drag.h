@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
+
 // @sect3{Aerodynamic drag on the body's surface}
 //
 // A body that swings through air feels a drag. For the speeds of a soft

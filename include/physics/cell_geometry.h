@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
+
 // @sect3{The reference geometry of the cells}
 //
 // In the total Lagrangian formulation the shape-function gradients and the

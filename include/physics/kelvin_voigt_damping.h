@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
+
 // @sect3{Objective stiffness-proportional damping: a Kelvin-Voigt solid}
 //
 // The damping of the reference study is stiffness-proportional, $\mathbf C

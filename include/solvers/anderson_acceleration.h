@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
+
 // @sect3{Anderson acceleration of a fixed-point iteration}
 //
 // The modified Newton iterations of a time step are a fixed-point

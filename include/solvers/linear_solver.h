@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
+
 // @sect3{The LinearSolver class}
 //
 // Every Newton iteration of SoftRobotDynamics solves a linear system

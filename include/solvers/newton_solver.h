@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
+
 // @sect3{Newton's method for the time steps and the static equilibrium}
 //
 // Every nonlinear problem of the program -- a time step of the HHT method,

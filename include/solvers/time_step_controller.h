@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
+
 // @sect3{The size of the time steps}
 //
 // The time loop runs with the nominal step $\Delta t$ of `Time

@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
+
 // @sect3{The Hilber-Hughes-Taylor time stepper}
 //
 // The semi-discrete equation of motion of the soft body is

@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
+
 // @sect3{Dense linear algebra for the analysis: the calls to LAPACK}
 //
 // Each function below checks the sizes it is given, converts them to

@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
+
 // @sect3{The LAPACK and BLAS routines the analysis calls}
 //
 // This header is private to source/analysis/dense_linear_algebra.cc, the

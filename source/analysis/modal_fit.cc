@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
+
 // @sect3{Fitting damped modes}
 //
 // The model for a record with $K$ spectral peaks is

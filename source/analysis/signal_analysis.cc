@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
+
 // @sect3{The analysis of one signal}
 //
 // The steps are those of the study, with the checks that a short record

@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
+
 // @sect3{Reports of the spectral analysis as CSV}
 //
 // The results of analyse_trajectory() as text: the table of peaks and the

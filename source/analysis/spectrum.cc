@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
+
 // @sect3{The zero-padded magnitude spectrum}
 //
 // The $N$ (windowed) samples are padded with zeros to the FFT length $L$;

@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
+
 // @sect3{Time-domain estimates: turning points and the logarithmic decrement}
 //
 // The extrema of a single damped mode lie half a damped period apart, and

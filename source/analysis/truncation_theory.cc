@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
+
 // @sect3{Truncation theory of the half-power bandwidth}
 //
 // The one piece of theory that decides how the numbers of the analysis must

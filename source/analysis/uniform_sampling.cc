@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
+
 // @sect3{Uniform sampling of a trajectory}
 //
 // A simulator that cuts its time step back for a while, or a motion capture

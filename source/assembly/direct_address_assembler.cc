@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
+
 // @sect3{The fast global addition: precomputed addresses}
 //
 // See include/assembly/direct_address_assembler.h.
@@ -284,6 +286,10 @@ namespace SoftRobot
     TrilinosWrappers::SparseMatrix &matrix) const
   {
     const unsigned int n = this->geometry.dofs_per_cell;
+    AssertDimension(cell_matrix.m(), n);
+    AssertDimension(cell_matrix.n(), n);
+    AssertIndexRange(local.cell * n * n + n * n - 1, matrix_positions.size());
+    AssertIndexRange(local.cell * n + n - 1, diagonal_positions.size());
     const int   *matrix_position   = &matrix_positions[local.cell * n * n];
     const int   *diagonal_position = &diagonal_positions[local.cell * n];
     const double *entries          = &cell_matrix(0, 0);
@@ -327,8 +333,15 @@ namespace SoftRobot
                                           double               *values,
                                           Epetra_Vector *ghost_values) const
   {
-    const unsigned int n        = this->geometry.dofs_per_cell;
-    const int         *position = &vector_positions[local.cell * n];
+    const unsigned int n = this->geometry.dofs_per_cell;
+    AssertDimension(cell_vector.size(), n);
+    AssertIndexRange(local.cell * n + n - 1, vector_positions.size());
+    Assert(ghost_values != nullptr || std::none_of(
+                                        &vector_positions[local.cell * n],
+                                        &vector_positions[local.cell * n] + n,
+                                        [](const int p) { return p <= -2; }),
+           ExcMessage("A row of another process without a ghost vector."));
+    const int *position = &vector_positions[local.cell * n];
     for (unsigned int i = 0; i < n; ++i)
       if (position[i] >= 0)
         values[position[i]] += cell_vector(i);

@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
+
 // @sect3{Functions from the expressions of the parameter file}
 //
 // See include/core/expression_function.h.

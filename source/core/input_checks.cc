@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
+
 // @sect3{Checking the input before anything is written}
 //
 // See include/core/input_checks.h.

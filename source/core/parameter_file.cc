@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
+
 // @sect3{Reading a parameter file}
 //
 // See include/core/parameter_file.h.

@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
+
 #include <core/parameter_file.h>
 #include <core/parameters.h>
 #include <deal.II/base/exceptions.h>

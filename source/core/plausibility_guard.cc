@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
+
 // @sect3{Guards against runs without physical meaning}
 //
 // See include/core/plausibility_guard.h.

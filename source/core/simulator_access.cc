@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
+
 // @sect3{Access to the simulator's internals}
 //
 // See include/core/simulator_access.h.

@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
+
 // @sect3{SoftRobotDynamics: set-up and the run}
 //
 // This file holds the phases of SoftRobotDynamics that run once, before the

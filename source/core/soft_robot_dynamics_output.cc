@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
+
 // @sect3{SoftRobotDynamics: what a run writes}
 //
 // Three kinds of output: VTU files of the whole body at the output interval

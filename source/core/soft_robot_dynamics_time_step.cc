@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
+
 // @sect3{SoftRobotDynamics: the initial state and the time step}
 //
 // This file holds the phases of SoftRobotDynamics that compute the motion:

@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
+
 #include <deal.II/differentiation/ad.h>
 #include <Sacado.hpp>
 #include <material/neo_hookean_energy.h>

@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
+
 // @sect3{Cell data: one value per cell, written as cell data}
 //
 // See include/output/cell_data.h.

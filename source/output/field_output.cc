@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
+
 // @sect3{Field output for ParaView}
 //
 // See include/output/field_output.h.

@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
+
 // @sect3{The output directory}
 //
 // See include/output/output_directory.h.

@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
+
 // @sect3{The cost of a run}
 //
 // See include/output/run_statistics.h. The JSON text comes from

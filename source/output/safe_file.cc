@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
+
 // @sect3{Writing files so that nothing is lost or half written}
 //
 // See include/output/safe_file.h.

@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
+
 // @sect3{The motion of the tip}
 //
 // See include/output/tip_region.h.

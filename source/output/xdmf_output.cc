@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
+
 // @sect3{Field output in HDF5 with an XDMF record}
 //
 // See include/output/xdmf_output.h.

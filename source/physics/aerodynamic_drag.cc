@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
+
 // @sect3{Aerodynamic drag on the body's surface}
 //
 // See include/physics/aerodynamic_drag.h for the formulas.

@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
+
 // @sect3{The reference geometry of the cells}
 //
 // See include/physics/cell_geometry.h.

@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
+
 // @sect3{The hyperelastic solid: what one cell contributes}
 //
 // See include/physics/hyperelastic_solid.h for the formulas.

@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
+
 // @sect3{Inertia and gravity}
 //
 // See include/physics/inertia.h.

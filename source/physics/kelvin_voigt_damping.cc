@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
+
 // @sect3{Objective stiffness-proportional damping: a Kelvin-Voigt solid}
 //
 // See include/physics/kelvin_voigt_damping.h for the formulas.

@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
+
 // @sect3{Nominal tractions on the boundary}
 //
 // See include/physics/traction_load.h.

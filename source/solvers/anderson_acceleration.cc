@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
+
 // @sect3{Implementation of AndersonAcceleration}
 //
 // The history, the least-squares problem for the coefficients and the

@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
+
 // @sect3{Implementation of the LinearSolver class}
 //
 // The linear solver of Newton's method, declared in

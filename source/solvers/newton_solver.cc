@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
+
 // @sect3{Implementation of NewtonSolver}
 //
 // The iteration of solve() and its pieces: the tests at the top of every

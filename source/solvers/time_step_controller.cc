@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
+
 // @sect3{Implementation of TimeStepController}
 //
 // The rules of include/solvers/time_step_controller.h, one function each.

@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
+
 #include <cmath>
 #include <deal.II/base/exceptions.h>
 #include <deal.II/lac/lapack_full_matrix.h>

@@ -1,3 +1,5 @@
+# SPDX-License-Identifier: LGPL-2.1-or-later
+
 # Runs the simulator as a user would and checks what it leaves behind.
 #
 #   cmake -DPROGRAM=<soft-robot> [-DPARAMETER_FILE=<prm>] -DWORK_DIRECTORY=<dir>

@@ -1,3 +1,5 @@
+# SPDX-License-Identifier: LGPL-2.1-or-later
+
 # parameters/default.prm must be what 'soft-robot --print-parameters' prints.
 execute_process(COMMAND ${PROGRAM} --print-parameters OUTPUT_FILE ${GENERATED}
                 RESULT_VARIABLE exit_code)

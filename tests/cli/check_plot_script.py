@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: LGPL-2.1-or-later
 """Checks doc/plot_tip_trajectory.py.
 
 Usage: check_plot_script.py PLOT_SCRIPT TRAJECTORY.csv

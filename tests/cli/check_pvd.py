@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: LGPL-2.1-or-later
 """Checks the PVD record of a run.
 
 Usage: check_pvd.py OUTPUT_DIRECTORY N_DATASETS [LAST_TIME]

@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: LGPL-2.1-or-later
 """Reads back the HDF5/XDMF output of a run and compares it with the VTU
 output of the same run.
 
