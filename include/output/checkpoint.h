@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
+
 // @sect3{Checkpoints and restarts}
 //
 // A run of an hour on a shared machine may be stopped by the queue, by the

@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
+
 // @sect3{SoftRobotDynamics: checkpoints and restarts}
 //
 // This file holds the phases of SoftRobotDynamics that stop a run so that

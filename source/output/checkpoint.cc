@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
+
 // @sect3{Checkpoints and restarts}
 //
 // See include/output/checkpoint.h.

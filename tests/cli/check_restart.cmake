@@ -1,3 +1,5 @@
+# SPDX-License-Identifier: LGPL-2.1-or-later
+
 # Runs a scene three times and checks that a restart continues a run as if
 # it had not been interrupted:
 #   full/  the uninterrupted run;

@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: LGPL-2.1-or-later
 """Compares a run continued from a checkpoint with the uninterrupted run.
 
 Usage: compare_restart.py FULL PART [--tolerance T]
