@@ -11,7 +11,10 @@
 //   message names the file, the entry, the value and what is allowed;
 // - 2: the run cannot continue, or its motion has lost its physical
 //   meaning; the output written so far is kept;
-// - 3: a file could not be written; the message names it and the reason.
+// - 3: a file could not be written; the message names it and the reason;
+// - 4: the run was interrupted (SIGINT, SIGTERM) and wrote a checkpoint
+//   after its current step; `--restart DIR` continues it (see
+//   output/checkpoint.h).
 //
 // Only process 0 prints. The simulator is destroyed before its exception is
 // reported: its timer communicates in its destructor, and destroyed while
@@ -62,15 +65,22 @@ namespace
   }
 
   const char *usage =
-    "Usage: soft-robot <file.prm> [--set 'Subsection/Entry=value']...\n"
+    "Usage: soft-robot <file.prm> [--set 'Subsection/Entry=value']... "
+    "[--restart DIR]\n"
     "       soft-robot --print-parameters   (all entries with defaults and "
     "documentation)\n"
     "       soft-robot --help | --version\n"
     "Each --set replaces one entry of the file, e.g.\n"
     "  --set 'Time integration/End time=0.5'\n"
     "  --set 'Silicone library/Parameter set=calibrated'\n"
+    "--restart DIR continues the run from the latest checkpoint in DIR (the "
+    "output directory's 'checkpoint', written every Output/Checkpoint "
+    "interval steps and at SIGINT or SIGTERM), with the same parameter "
+    "file and --set options; only End time, Checkpoint interval and "
+    "Progress interval may change.\n"
     "Exit codes: 0 success, 1 error in the input (nothing written), 2 the "
-    "run stopped (the output so far kept), 3 a file could not be written.\n";
+    "run stopped (the output so far kept), 3 a file could not be written, 4 "
+    "interrupted by a signal (a checkpoint written).\n";
 
   // What the command line asks for.
   struct Command
@@ -84,6 +94,7 @@ namespace
     } action = Action::run;
     std::string              parameter_file;
     std::vector<std::string> overrides;
+    std::string              restart_directory;
     // Not empty: what is wrong with the command line.
     std::string error;
   };
@@ -108,6 +119,14 @@ namespace
                 "--set needs an argument 'Subsection/Entry=value'.";
             else
               command.overrides.emplace_back(argv[++i]);
+          }
+        else if (argument == "--restart")
+          {
+            if (i + 1 == argc)
+              command.error = "--restart needs an argument, the checkpoint "
+                              "directory.";
+            else
+              command.restart_directory = argv[++i];
           }
         else if (argument.rfind("-", 0) == 0)
           command.error = "unknown option '" + argument + "'.";
@@ -206,6 +225,7 @@ main(int argc, char *argv[])
 
       Parameters::AllParameters parameters;
       parameters.read_file(command.parameter_file, command.overrides);
+      parameters.restart_directory = command.restart_directory;
       switch (parameters.dimension)
         {
           case 1:
@@ -227,6 +247,11 @@ main(int argc, char *argv[])
     {
       report("Error writing the output: ", failure.what());
       return ExitCode::write_failure;
+    }
+  catch (RunInterrupted &interruption)
+    {
+      report("The run was interrupted: ", interruption.what());
+      return ExitCode::interrupted;
     }
   catch (dealii::ExceptionBase &error)
     {

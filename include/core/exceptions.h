@@ -2,7 +2,7 @@
 
 // @sect3{How a run fails}
 //
-// Four things can stop a time step or a run, and each has its own type, so
+// Five things can stop a time step or a run, and each has its own type, so
 // that the place that can act on it catches it and main() gives each its
 // own exit code:
 // - StepFailure: the current time step cannot be completed with its size
@@ -18,6 +18,9 @@
 //   full, the directory is not writable). main() ends the program with exit
 //   code 3 and a message that names the file and the reason; it is never
 //   reported as an error in the input.
+// - RunInterrupted: the run received SIGINT or SIGTERM; it has written a
+//   checkpoint after the step it was in (output/checkpoint.h), and main()
+//   ends the program with exit code 4 and the command that continues it.
 // - Errors in the input are deal.II's ExcMessage, thrown by AssertThrow with
 //   a message that names the file, the entry, the value and the allowed
 //   values; main() ends the program with exit code 1. They are all raised
@@ -50,6 +53,11 @@ namespace SoftRobot
     using std::runtime_error::runtime_error;
   };
 
+  struct RunInterrupted : public std::runtime_error
+  {
+    using std::runtime_error::runtime_error;
+  };
+
   // The exit codes of main().
   namespace ExitCode
   {
@@ -57,6 +65,7 @@ namespace SoftRobot
     constexpr int input_error   = 1;
     constexpr int run_aborted   = 2;
     constexpr int write_failure = 3;
+    constexpr int interrupted   = 4;
   } // namespace ExitCode
 } // namespace SoftRobot
 

@@ -352,6 +352,7 @@ namespace SoftRobot
       unsigned int tip_region_id;
       std::string  trajectory_file;
       unsigned int progress_interval;
+      unsigned int checkpoint_interval;
       bool         spectral_analysis;
       double       spectral_skip;
 
@@ -398,6 +399,16 @@ namespace SoftRobot
       read_string(const std::string &text);
 
       std::string source_name = "(string)";
+
+      // Every entry of the file, one 'Subsection/Entry = value' per line,
+      // except those a restart may change (End time, Checkpoint interval,
+      // Progress interval): what a checkpoint records of its parameters,
+      // so that a restart with other physics or numerics is refused.
+      std::string fingerprint;
+
+      // Not an entry of the file: the checkpoint directory a run continues
+      // from (the command line's --restart), empty for a new run.
+      std::string restart_directory;
 
       // "In the parameter file '<name>': ", the start of the messages about
       // the input.

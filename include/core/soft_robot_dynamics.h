@@ -39,7 +39,8 @@
 // The implementation is split by phase (doc/code-map.md):
 // source/core/soft_robot_dynamics.cc (set-up and run()),
 // source/core/soft_robot_dynamics_time_step.cc (initial state and time
-// step) and source/core/soft_robot_dynamics_output.cc (output).
+// step), source/core/soft_robot_dynamics_output.cc (output) and
+// source/core/soft_robot_dynamics_checkpoint.cc (checkpoints, restarts).
 
 #ifndef soft_robot_core_soft_robot_dynamics_h
 #define soft_robot_core_soft_robot_dynamics_h
@@ -64,6 +65,7 @@
 #include <deal.II/numerics/data_out.h>
 #include <core/plausibility_guard.h>
 #include <output/cell_data.h>
+#include <output/checkpoint.h>
 #include <output/field_output.h>
 #include <output/run_statistics.h>
 #include <output/tip_region.h>
@@ -164,6 +166,22 @@ namespace SoftRobot
     write_final_fields();
     void
     finish_run(const double wall_time);
+
+    // @sect4{Checkpoints}
+    //
+    // After a step: a checkpoint of the run (output/checkpoint.h) every
+    // Output/Checkpoint interval steps, and at an interruption, after which
+    // the run stops (RunInterrupted). Implemented in
+    // source/core/soft_robot_dynamics_checkpoint.cc.
+    void
+    checkpoint_or_stop();
+    void
+    write_checkpoint();
+    // Instead of initialize_state() at a restart: the state and the
+    // records of the checkpoint, and what the state determines assembled
+    // again; returns the checkpoint for the output to go on from.
+    CheckpointData
+    restore_checkpoint();
 
     // @sect4{The initial state}
     void

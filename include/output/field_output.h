@@ -80,6 +80,13 @@ namespace SoftRobot
     void
     finish();
 
+    // The outputs so far (time and PVTU file), for a checkpoint.
+    const std::vector<std::pair<double, std::string>> &
+    records() const
+    {
+      return pvd_records;
+    }
+
     // The wall time the writing thread has spent so far.
     double
     background_seconds() const

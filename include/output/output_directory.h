@@ -17,10 +17,11 @@
 //
 // The files of a run are: the trajectory (`Output/Trajectory file`), the
 // field output (`solution.pvd`, `solution.xdmf`, `solution_*`), the run
-// statistics and the spectra. A restart, which continues a run in its own
-// directory, will append to the trajectory and to the records instead
-// (the writers keep their records in memory and rewrite them whole, see
-// FieldOutput), and is the one case where these files are expected.
+// statistics, the spectra and the directory `checkpoint`. A restart, which
+// continues a run in its own directory, appends to the trajectory and goes
+// on with the records instead (the writers keep their records in memory
+// and rewrite them whole, see FieldOutput), and is the one case where
+// these files are expected; it does not call prepare_output_directory().
 //
 // Implemented in source/output/output_directory.cc.
 

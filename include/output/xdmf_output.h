@@ -19,7 +19,8 @@
 // cells, as datasets of the same file, and the XDMF record lists them with
 // `Center="Cell"` (deal.II's XDMFEntry knows node attributes only, so the
 // record is written here). Like the PVD record it is kept in memory, written
-// to a temporary file and renamed at every output.
+// to a temporary file and renamed at every output; a restart hands the
+// records of the earlier part of the run to the constructor.
 //
 // The writes are collective MPI operations, which only the main thread may
 // make: unlike the VTU output, this output is written while the time loop
@@ -46,11 +47,20 @@ namespace SoftRobot
   {
   public:
     // Files go to `directory`; the patches have `subdivisions` per cell.
+    // `records` are those of an earlier part of the run (see records()),
+    // which a restart goes on from; the mesh file is then not written
+    // again.
     XdmfOutput(const std::string        &directory,
                const Triangulation<dim> &triangulation,
                const Mapping<dim>       &mapping,
                const unsigned int        subdivisions,
-               const MPI_Comm            mpi_communicator);
+               const MPI_Comm            mpi_communicator,
+               const std::string        &records = "");
+
+    // The outputs so far as text (one line each: time, file, fields), for
+    // a checkpoint.
+    std::string
+    records() const;
 
     // Collective: writes the nodal fields of `data_out` and `cell_data` as
     // the output at `time`, and the XDMF record of all outputs so far.

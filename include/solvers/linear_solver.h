@@ -116,6 +116,9 @@ namespace SoftRobot
     // the factorizations or multigrid set-ups.
     unsigned int
     n_preparations() const;
+    // The count of an earlier part of the run, at a restart.
+    void
+    set_n_preparations(const unsigned int n);
 
     // The solver prepared last: the Amesos class that was created
     // ("Amesos_Klu", "Amesos_Mumps"), or "CG with ML" / "GMRES with ML";

@@ -86,6 +86,20 @@ namespace SoftRobot
     unsigned int
     n_cutbacks() const;
 
+    // What the controller remembers between steps, for a checkpoint
+    // (output/checkpoint.h): a restart that sets it goes on with the same
+    // step sizes as the run that was interrupted.
+    struct State
+    {
+      double       time_step;
+      unsigned int steps_since_cutback;
+      unsigned int total_cutbacks;
+    };
+    State
+    state() const;
+    void
+    set_state(const State &state);
+
   private:
     const Parameters::TimeIntegration parameters;
     const ConditionalOStream         &pcout;

@@ -998,11 +998,12 @@ namespace SoftRobot
                         Patterns::Selection("refuse|replace"),
                         "What a run does when its output directory holds "
                         "the output of an earlier run (a trajectory, field "
-                        "output, statistics or spectra). 'refuse': stop "
-                        "before anything is written, with a message (exit "
-                        "code 1). 'replace': remove the earlier run's field "
-                        "output, statistics and spectra, and write the "
-                        "trajectory anew. Other files are never touched.");
+                        "output, statistics, spectra or checkpoints). "
+                        "'refuse': stop before anything is written, with a "
+                        "message (exit code 1). 'replace': remove the "
+                        "earlier run's field output, statistics, spectra and "
+                        "checkpoints, and write the trajectory anew. Other "
+                        "files are never touched.");
       prm.declare_entry("Output interval",
                         "0.05",
                         Patterns::Double(0),
@@ -1045,6 +1046,14 @@ namespace SoftRobot
                         Patterns::Integer(0),
                         "Print a progress line every this many steps (0: "
                         "never).");
+      prm.declare_entry("Checkpoint interval",
+                        "0",
+                        Patterns::Integer(0),
+                        "Write a checkpoint every this many steps (0: only "
+                        "when the run is interrupted by SIGINT or SIGTERM) "
+                        "into the directory 'checkpoint' of the output "
+                        "directory; soft-robot --restart continues the run "
+                        "from it (see output/checkpoint.h).");
       prm.leave_subsection();
     }
 
@@ -1060,6 +1069,7 @@ namespace SoftRobot
       output_interval   = prm.get_double("Output interval");
       trajectory_file   = prm.get("Trajectory file");
       progress_interval = prm.get_integer("Progress interval");
+      checkpoint_interval = prm.get_integer("Checkpoint interval");
       spectral_analysis = prm.get_bool("Spectral analysis");
       spectral_skip     = prm.get_double("Spectral analysis skip");
       const auto words =
@@ -1159,6 +1169,45 @@ namespace SoftRobot
 
 
 
+    // The fingerprint of the parameters (AllParameters::fingerprint): the
+    // short listing of ParameterHandler, one line per entry with its path.
+    namespace
+    {
+      std::string
+      fingerprint_of(const ParameterHandler &prm)
+      {
+        std::ostringstream listing;
+        prm.print_parameters(listing, ParameterHandler::ShortPRM);
+        std::istringstream       lines(listing.str());
+        std::vector<std::string> path;
+        std::string              line, result;
+        while (std::getline(lines, line))
+          {
+            line = Utilities::trim(line);
+            if (line.rfind("subsection ", 0) == 0)
+              path.push_back(Utilities::trim(line.substr(11)));
+            else if (line == "end" && !path.empty())
+              path.pop_back();
+            else if (line.rfind("set ", 0) == 0)
+              {
+                const auto  equals = line.find('=');
+                std::string entry;
+                for (const std::string &subsection : path)
+                  entry += subsection + "/";
+                entry += Utilities::trim(line.substr(4, equals - 4));
+                if (entry != "Time integration/End time" &&
+                    entry != "Output/Checkpoint interval" &&
+                    entry != "Output/Progress interval")
+                  result += entry + " = " +
+                            Utilities::trim(line.substr(equals + 1)) + "\n";
+              }
+          }
+        return result;
+      }
+    } // namespace
+
+
+
     // The file is read by ParameterFileText, which expands its includes
     // (relative to the file that holds them) and turns ParameterHandler's
     // messages into one line that names the file, line, subsection, entry,
@@ -1210,6 +1259,7 @@ namespace SoftRobot
       if (!pressure_table.empty() &&
           std::filesystem::path(pressure_table).is_relative())
         pressure_table = (directory / pressure_table).string();
+      fingerprint = fingerprint_of(prm);
       check_consistency();
     }
 
@@ -1220,6 +1270,7 @@ namespace SoftRobot
       declare_parameters(prm);
       prm.parse_input_from_string(text);
       parse_parameters(prm);
+      fingerprint = fingerprint_of(prm);
       check_consistency();
     }
 

@@ -427,6 +427,8 @@ namespace SoftRobot
   // A run that cannot continue, or whose motion has lost its physical
   // meaning (core/plausibility_guard.h), ends with RunAborted; its last
   // finite state is written first. The final state is always written.
+  // A run interrupted by a signal writes a checkpoint and stops
+  // (checkpoint_or_stop(), RunInterrupted); a restart continues it.
   template <int dim>
   void
   SoftRobotDynamics<dim>::run()
@@ -456,12 +458,28 @@ namespace SoftRobot
                                       *cell_quadrature,
                                       constraints,
                                       mpi_communicator);
-    initialize_state();
-    check_initial_state();
+    // A restart continues from the state of its checkpoint, in the output
+    // directory of the run it continues, which it does not prepare anew.
+    const bool     restart = !parameters.restart_directory.empty();
+    CheckpointData checkpoint;
+    if (restart)
+      checkpoint = restore_checkpoint();
+    else
+      {
+        initialize_state();
+        check_initial_state();
+      }
 
     // Only now is anything written.
-    prepare_output_directory(parameters, mpi_communicator);
-    open_trajectory();
+    if (restart)
+      trajectory.reopen(parameters.output_directory + "/" +
+                          parameters.trajectory_file,
+                        checkpoint.trajectory_length);
+    else
+      {
+        prepare_output_directory(parameters, mpi_communicator);
+        open_trajectory();
+      }
     const unsigned int subdivisions = simplex_mesh ? 1 : parameters.degree;
     if (parameters.write_vtu)
       field_output =
@@ -469,17 +487,24 @@ namespace SoftRobot
                                            triangulation,
                                            *mapping,
                                            subdivisions,
-                                           mpi_communicator);
+                                           mpi_communicator,
+                                           checkpoint.pvd_records);
     if (parameters.write_hdf5)
       xdmf_output =
         std::make_unique<XdmfOutput<dim>>(parameters.output_directory,
                                           triangulation,
                                           *mapping,
                                           subdivisions,
-                                          mpi_communicator);
+                                          mpi_communicator,
+                                          checkpoint.xdmf_records);
 
-    write_trajectory_row();
-    output_results();
+    if (!restart)
+      {
+        write_trajectory_row();
+        output_results();
+      }
+    const InterruptionHandler interruption_handler;
+    const double              start_time = current.time;
     try
       {
         while (advance_one_step())
@@ -488,11 +513,12 @@ namespace SoftRobot
             write_trajectory_row();
             output_results();
             check_motion();
+            checkpoint_or_stop();
             if (parameters.progress_interval > 0 &&
                 counters.steps % parameters.progress_interval == 0)
               {
                 const double elapsed = wall_clock.wall_time();
-                const double left    = elapsed / current.time *
+                const double left    = elapsed / (current.time - start_time) *
                                     (parameters.end_time - current.time);
                 pcout << "step " << std::setw(5) << counters.steps
                       << "  t = " << std::fixed << std::setprecision(4)

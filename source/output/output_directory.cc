@@ -43,11 +43,16 @@ namespace SoftRobot
     for (const auto &entry :
          std::filesystem::directory_iterator(directory, error))
       {
-        // Files (and links), not directories: a directory is nothing a
-        // run writes.
-        if (entry.is_directory(error))
-          continue;
+        // Files (and links), and of the directories only the checkpoints
+        // (output/checkpoint.h): a stale checkpoint beside a new run's
+        // output would continue the old run into the new one's files.
         const std::string name = entry.path().filename().string();
+        if (entry.is_directory(error))
+          {
+            if (name == "checkpoint")
+              files.push_back(name);
+            continue;
+          }
         const bool        temporary =
           name.size() > 4 && name.substr(name.size() - 4) == ".tmp";
         if (!temporary &&
@@ -102,9 +107,9 @@ namespace SoftRobot
             for (const std::string &name : files)
               if (failure.empty() && name != parameters.trajectory_file)
                 {
-                  std::filesystem::remove(std::filesystem::path(directory) /
-                                            name,
-                                          error);
+                  std::filesystem::remove_all(std::filesystem::path(directory) /
+                                                name,
+                                              error);
                   if (error)
                     failure = "Cannot remove '" + directory + "/" + name +
                               "' of the earlier run: " + error.message() + ".";

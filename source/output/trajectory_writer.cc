@@ -9,6 +9,7 @@
 #include <core/exceptions.h>
 #include <deal.II/base/exceptions.h>
 #include <deal.II/base/utilities.h>
+#include <filesystem>
 #include <iomanip>
 #include <output/safe_file.h>
 #include <output/trajectory_writer.h>
@@ -39,6 +40,7 @@ namespace SoftRobot
           write();
           file.flush();
           check_written(file, name);
+          bytes = static_cast<std::uint64_t>(file.tellp());
         }
       catch (WriteFailure &failure)
         {
@@ -64,6 +66,55 @@ namespace SoftRobot
         file << (c == 0 ? "" : ",") << columns[c];
       file << '\n';
     });
+  }
+
+
+
+  // @sect4{TrajectoryWriter::reopen}
+  //
+  // The rows after the checkpoint, written before the run was interrupted,
+  // are cut off, so that the continued run writes them again, and the
+  // file ends up as the uninterrupted run's.
+  void
+  TrajectoryWriter::reopen(const std::string  &file_name,
+                           const std::uint64_t length)
+  {
+    name = file_name;
+    std::string problem;
+    if (root)
+      {
+        std::error_code      error;
+        const std::uintmax_t size = std::filesystem::file_size(name, error);
+        if (error)
+          problem = "cannot open the trajectory '" + name +
+                    "' of the run to be continued: " + error.message() + ".";
+        else if (size < length)
+          problem = "the trajectory '" + name + "' has " +
+                    std::to_string(size) + " bytes, fewer than the " +
+                    std::to_string(length) +
+                    " it had at the checkpoint; it is not the file of the "
+                    "run to be continued.";
+      }
+    problem = Utilities::MPI::broadcast(mpi_communicator, problem, 0);
+    AssertThrow(problem.empty(), ExcMessage("Cannot restart: " + problem));
+    on_root([&]() {
+      std::error_code error;
+      std::filesystem::resize_file(name, length, error);
+      if (error)
+        throw WriteFailure("Cannot cut '" + name +
+                           "' back to the checkpoint: " + error.message());
+      file.open(name, std::ios::app | std::ios::ate);
+      check_written(file, name);
+    });
+    bytes = root ? length : 0;
+  }
+
+
+
+  std::uint64_t
+  TrajectoryWriter::length() const
+  {
+    return bytes;
   }
 
 

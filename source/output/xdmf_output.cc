@@ -20,13 +20,63 @@ namespace SoftRobot
                               const Triangulation<dim> &triangulation,
                               const Mapping<dim>       &mapping,
                               const unsigned int        subdivisions,
-                              const MPI_Comm            mpi_communicator)
+                              const MPI_Comm            mpi_communicator,
+                              const std::string        &records)
     : directory(directory + "/")
     , triangulation(triangulation)
     , mapping(mapping)
     , subdivisions(subdivisions)
     , mpi_communicator(mpi_communicator)
   {
+    std::istringstream lines(records);
+    std::string        line;
+    while (std::getline(lines, line))
+      {
+        std::istringstream words(line);
+        Entry              entry;
+        std::string        time;
+        unsigned int       n_node_fields = 0, n_cell_fields = 0;
+        words >> time >> entry.solution_file >> n_node_fields;
+        entry.time = std::stod(time);
+        for (unsigned int i = 0; i < n_node_fields; ++i)
+          {
+            std::pair<std::string, unsigned int> field;
+            words >> field.first >> field.second;
+            entry.node_fields.push_back(field);
+          }
+        words >> n_cell_fields;
+        entry.cell_fields.resize(n_cell_fields);
+        for (std::string &name : entry.cell_fields)
+          words >> name;
+        AssertThrow(!words.fail(),
+                    ExcMessage("The checkpoint's XDMF record '" + line +
+                               "' is damaged."));
+        entries.push_back(entry);
+      }
+  }
+
+
+
+  // @sect4{XdmfOutput::records}
+  //
+  // The times in hexadecimal floating point, which keeps every bit.
+  template <int dim>
+  std::string
+  XdmfOutput<dim>::records() const
+  {
+    std::ostringstream out;
+    for (const Entry &entry : entries)
+      {
+        out << std::hexfloat << entry.time << std::defaultfloat << ' '
+            << entry.solution_file << ' ' << entry.node_fields.size();
+        for (const auto &[name, components] : entry.node_fields)
+          out << ' ' << name << ' ' << components;
+        out << ' ' << entry.cell_fields.size();
+        for (const std::string &name : entry.cell_fields)
+          out << ' ' << name;
+        out << '\n';
+      }
+    return out.str();
   }
 
 

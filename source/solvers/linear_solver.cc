@@ -401,6 +401,14 @@ namespace SoftRobot
 
 
 
+  void
+  LinearSolver::set_n_preparations(const unsigned int n)
+  {
+    preparations = n;
+  }
+
+
+
   std::string
   LinearSolver::solver_in_use() const
   {

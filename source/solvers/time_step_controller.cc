@@ -139,4 +139,22 @@ namespace SoftRobot
   {
     return total_cutbacks;
   }
+
+
+
+  TimeStepController::State
+  TimeStepController::state() const
+  {
+    return {time_step, steps_since_cutback, total_cutbacks};
+  }
+
+
+
+  void
+  TimeStepController::set_state(const State &state)
+  {
+    time_step           = state.time_step;
+    steps_since_cutback = state.steps_since_cutback;
+    total_cutbacks      = state.total_cutbacks;
+  }
 } // namespace SoftRobot
