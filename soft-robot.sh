@@ -134,7 +134,10 @@ case "${1:-}" in
     }
     export -f run_scene
     export SOFT_ROBOT_JOBS=${SOFT_ROBOT_JOBS:-2}
-    ls parameters/bellows/*.prm | grep -v /protocol_ \
+    # The scenes of the three experiments (the pneumatic scenes have a
+    # study of their own, ./soft-robot.sh pneumatics).
+    ls parameters/bellows/*.prm | grep -E '/(column|planar|spherical|vertical)_' \
+      | grep -v /protocol_ \
       | xargs -P "$SOFT_ROBOT_JOBS" -I {} bash -c 'run_scene {}'
     /usr/bin/python3 doc/validation_report.py output doc
     echo "Wrote doc/validation.md"

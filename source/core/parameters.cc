@@ -1363,6 +1363,13 @@ namespace SoftRobot
     {
       const std::string where = this->where() + "Pneumatics/";
       const bool        gas   = (pressure_model == PressureModel::gas);
+      // The checkpoint does not hold the gas sealed at t = 0.
+      AssertThrow(!(has_pressure() && gas && checkpoint_interval > 0),
+                  ExcMessage(this->where() +
+                             "Output/Checkpoint interval = " +
+                             std::to_string(checkpoint_interval) +
+                             ": checkpoints are not available with "
+                             "Pneumatics/Pressure model = gas; set it to 0."));
       AssertThrow(pressure_expression.empty() || pressure_table.empty(),
                   ExcMessage(where + "Pressure = '" + pressure_expression +
                              "' and Pressure table = '" + pressure_table +
