@@ -26,13 +26,13 @@
 // coefficient is not fitted: zeta = 2 xi / omega with the measured xi and
 // omega (see parameters/silicones.prm).
 
+#include <algorithm>
 #include <analysis/spectral_analysis.h>
+#include <cmath>
 #include <core/parameters.h>
 #include <core/simulator_access.h>
 #include <core/soft_robot_dynamics.h>
 #include <deal.II/base/mpi.h>
-#include <algorithm>
-#include <cmath>
 #include <filesystem>
 #include <functional>
 #include <iomanip>
@@ -112,18 +112,17 @@ namespace
   tip_load_problem(Parameters::AllParameters parameters,
                    const std::string        &traction)
   {
-    parameters.constants               = "";
-    parameters.traction_expression     = traction;
-    parameters.traction_boundary_ids   = {parameters.dimension == 3 ? 5u : 1u};
+    parameters.constants             = "";
+    parameters.traction_expression   = traction;
+    parameters.traction_boundary_ids = {parameters.dimension == 3 ? 5u : 1u};
     parameters.initial_state =
       Parameters::InitialConditions::InitialState::static_equilibrium;
     parameters.load_steps              = 1;
     parameters.displacement_expression = "";
     parameters.velocity_expression     = "";
-    parameters.tip_region_type =
-      Parameters::Output::TipRegionType::material;
-    parameters.tip_region_id           = 2;
-    parameters.progress_interval       = 0;
+    parameters.tip_region_type   = Parameters::Output::TipRegionType::material;
+    parameters.tip_region_id     = 2;
+    parameters.progress_interval = 0;
     return parameters;
   }
 
@@ -153,17 +152,15 @@ namespace
   // traction expression for a signed force.
   template <int dim>
   double
-  tip_stiffness(const Parameters::AllParameters                 &parameters,
-                const unsigned int                               component,
+  tip_stiffness(const Parameters::AllParameters                &parameters,
+                const unsigned int                              component,
                 const std::function<std::string(const double)> &traction_of)
   {
     const double force = probe_force(parameters);
-    const double plus =
-      tip_displacement<dim>(
-        tip_load_problem(parameters, traction_of(force)))[component];
-    const double minus =
-      tip_displacement<dim>(
-        tip_load_problem(parameters, traction_of(-force)))[component];
+    const double plus  = tip_displacement<dim>(
+      tip_load_problem(parameters, traction_of(force)))[component];
+    const double minus = tip_displacement<dim>(
+      tip_load_problem(parameters, traction_of(-force)))[component];
     return 2. * force / (plus - minus);
   }
 
@@ -188,9 +185,9 @@ namespace
       {
         if (d > 0)
           text += "; ";
-        text += (d == component) ?
-                  "x > " + number(x_min) + " ? " + number(value, 17) + " : 0" :
-                  "0";
+        text += (d == component)
+                  ? "x > " + number(x_min) + " ? " + number(value, 17) + " : 0"
+                  : "0";
       }
     return text;
   }
@@ -206,8 +203,8 @@ namespace
   // The geometry of the reduced models, as the scene files state it.
   struct ReducedGeometry
   {
-    double column_section; // mm^2
-    double strip_width;    // mm
+    double column_section;  // mm^2
+    double strip_width;     // mm
     double strip_thickness; // mm
   };
 
@@ -234,8 +231,7 @@ namespace
   double
   width_of(const std::string &generator_arguments)
   {
-    const auto corners =
-      Utilities::split_string_list(generator_arguments, ':');
+    const auto corners = Utilities::split_string_list(generator_arguments, ':');
     return -2. * Utilities::string_to_double(
                    Utilities::split_string_list(corners.at(1), ',').at(1));
   }
@@ -281,12 +277,13 @@ namespace
     const double lateral_3d = tip_stiffness<3>(half, 1, face_traction(1));
     std::cout << "3D actuator at its hanging equilibrium ("
               << quarter.by_id.at(1).silicone << ", "
-              << Parameters::name_of(quarter.parameter_set) << ", mu = "
-              << quarter.by_id.at(1).shear_modulus << " kPa; "
+              << Parameters::name_of(quarter.parameter_set)
+              << ", mu = " << quarter.by_id.at(1).shear_modulus << " kPa; "
               << quarter.mesh_file << ", " << half.mesh_file << ", degree "
-              << quarter.degree << "):\n  axial stiffness   = "
-              << number(axial_3d, 6) << " mN/mm\n  lateral stiffness = "
-              << number(lateral_3d, 6) << " mN/mm" << std::endl;
+              << quarter.degree
+              << "):\n  axial stiffness   = " << number(axial_3d, 6)
+              << " mN/mm\n  lateral stiffness = " << number(lateral_3d, 6)
+              << " mN/mm" << std::endl;
 
     ReducedGeometry geometry;
 
@@ -295,8 +292,8 @@ namespace
     // faster than linearly (a thicker bar is stretched less by the weight
     // and so stiffer); a secant iteration on the logarithms finds the
     // section.
-    Parameters::AllParameters column = read(column_scene);
-    const auto column_stiffness = [&](const double section) {
+    Parameters::AllParameters column           = read(column_scene);
+    const auto                column_stiffness = [&](const double section) {
       column.by_id.at(1).section = section;
       column.by_id.at(2).section = section;
       const double stiffness =
@@ -308,8 +305,13 @@ namespace
                 << " mN/mm" << std::endl;
       return stiffness;
     };
-    geometry.column_section = solve_power_law(
-      column_stiffness, axial_3d, column.by_id.at(1).section, 1., 0.5, 3., 1e-4);
+    geometry.column_section = solve_power_law(column_stiffness,
+                                              axial_3d,
+                                              column.by_id.at(1).section,
+                                              1.,
+                                              0.5,
+                                              3.,
+                                              1e-4);
 
     // The 2D strip of width w and thickness t. The width sets the ratio of
     // the strip's bending to its axial stiffness, a property of the shape:
@@ -326,9 +328,9 @@ namespace
     const std::string         x_steps = x_steps_of(strip.generator_arguments);
     geometry.strip_width              = width_of(strip.generator_arguments);
     geometry.strip_thickness          = strip.by_id.at(1).section;
-    const auto strip_stiffness        = [&](const Parameters::AllParameters &base,
-                                     const double       width,
-                                     const double       thickness,
+    const auto strip_stiffness = [&](const Parameters::AllParameters &base,
+                                     const double                     width,
+                                     const double                     thickness,
                                      const unsigned int component) {
       Parameters::AllParameters model = base;
       model.generator_arguments = strip_generator_arguments(x_steps, width);
@@ -341,14 +343,15 @@ namespace
         });
       std::cout << "  2D strip" << (base.gravity[0] == 0. ? " (unloaded)" : "")
                 << ", width " << number(width, 6) << " mm, thickness "
-                << number(thickness, 6) << " mm: "
-                << (component == 0 ? "axial" : "lateral") << " stiffness "
-                << number(stiffness, 6) << " mN/mm" << std::endl;
+                << number(thickness, 6)
+                << " mm: " << (component == 0 ? "axial" : "lateral")
+                << " stiffness " << number(stiffness, 6) << " mN/mm"
+                << std::endl;
       return stiffness;
     };
     {
       const Parameters::AllParameters unloaded = without_gravity(strip);
-      const double axial_0 =
+      const double                    axial_0 =
         tip_stiffness<3>(without_gravity(quarter), 0, face_traction(0));
       const double lateral_0 =
         tip_stiffness<3>(without_gravity(half), 1, face_traction(1));
@@ -434,19 +437,18 @@ namespace
   {
     const Parameters::AllParameters column = read(column_scene);
     const Parameters::AllParameters strip  = read(strip_scene);
-    const double width = width_of(strip.generator_arguments);
-    const auto close = [](const double a, const double b) {
+    const double                    width = width_of(strip.generator_arguments);
+    const auto                      close = [](const double a, const double b) {
       return std::abs(a - b) <= 5e-3 * std::abs(b);
     };
-    bool match = true;
+    bool       match = true;
     const auto check = [&](const std::string &what,
                            const double       in_file,
                            const double       computed) {
       if (!close(in_file, computed))
         {
           std::cout << "MISMATCH: " << what << " is " << in_file
-                    << " in the scene file, computed " << computed
-                    << std::endl;
+                    << " in the scene file, computed " << computed << std::endl;
           match = false;
         }
     };
@@ -479,25 +481,25 @@ namespace
                      const std::string        &directory)
   {
     Parameters::Material &silicone = parameters.by_id.at(1);
-    const double ratio = silicone.bulk_modulus / silicone.shear_modulus;
-    silicone.shear_modulus     = shear_modulus;
-    silicone.bulk_modulus      = ratio * shear_modulus;
-    parameters.output_directory = directory;
-    parameters.trajectory_file  = "tip_trajectory.csv";
+    const double ratio     = silicone.bulk_modulus / silicone.shear_modulus;
+    silicone.shear_modulus = shear_modulus;
+    silicone.bulk_modulus  = ratio * shear_modulus;
+    parameters.output_directory  = directory;
+    parameters.trajectory_file   = "tip_trajectory.csv";
     parameters.write_vtu         = false;
     parameters.spectral_analysis = false;
     parameters.progress_interval = 0;
     // The directory holds the previous trial's run.
-    parameters.existing_output =
-      Parameters::Output::ExistingOutput::replace;
+    parameters.existing_output = Parameters::Output::ExistingOutput::replace;
     {
       SoftRobotDynamics<3> model(parameters, MPI_COMM_WORLD);
       model.run();
     }
-    const Analysis::TrajectoryAnalysis analysis = Analysis::analyse_trajectory(
-      Analysis::read_tip_trajectory(directory + "/tip_trajectory.csv"),
-      Analysis::SpectralOptions(),
-      parameters.spectral_skip);
+    const Analysis::TrajectoryAnalysis analysis =
+      Analysis::analyse_trajectory(Analysis::read_tip_trajectory(
+                                     directory + "/tip_trajectory.csv"),
+                                   Analysis::SpectralOptions(),
+                                   parameters.spectral_skip);
     const Analysis::SpectralResult &vertical = analysis.directions.at(0).result;
     AssertThrow(vertical.has_peak,
                 ExcMessage("The vertical motion has no spectral peak: " +
@@ -515,7 +517,7 @@ namespace
                                    "library."));
     const Parameters::Silicone &silicone =
       parameters.silicones.at(material.silicone);
-    const double target = silicone.frequency;
+    const double      target = silicone.frequency;
     const std::string directory =
       (std::filesystem::temp_directory_path() /
        ("soft-robot-calibrate-" + std::to_string(::getpid())))
@@ -528,8 +530,7 @@ namespace
         const double frequency =
           vertical_frequency(parameters, shear_modulus, directory);
         std::cout << "  mu = " << number(shear_modulus, 6)
-                  << " kPa: f = " << number(frequency, 6) << " Hz"
-                  << std::endl;
+                  << " kPa: f = " << number(frequency, 6) << " Hz" << std::endl;
         return frequency;
       },
       target,
@@ -540,8 +541,8 @@ namespace
       1e-3);
     std::filesystem::remove_all(directory);
     std::cout << silicone.name << ": target " << target
-              << " Hz (experiment 1)\n  set Calibrated shear modulus = " << number(mu, 4)
-              << "   (C1 = " << silicone.c1 << ", ratio "
+              << " Hz (experiment 1)\n  set Calibrated shear modulus = "
+              << number(mu, 4) << "   (C1 = " << silicone.c1 << ", ratio "
               << number(mu / silicone.c1, 4) << ")" << std::endl;
     return mu;
   }

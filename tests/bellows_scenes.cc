@@ -16,11 +16,11 @@
 
 // Not typed on the dimension: parameter files are read, nothing is run.
 
+#include <cmath>
 #include <core/parameters.h>
+#include <cstdlib>
 #include <deal.II/base/numbers.h>
 #include <gtest/gtest.h>
-#include <cmath>
-#include <cstdlib>
 #include <map>
 #include <string>
 
@@ -32,8 +32,8 @@ namespace
   scene_file(const std::string &name)
   {
     const char *source = std::getenv("SOFT_ROBOT_SOURCE_DIR");
-    return std::string(source ? source : "..") + "/parameters/bellows/" +
-           name + ".prm";
+    return std::string(source ? source : "..") + "/parameters/bellows/" + name +
+           ".prm";
   }
 
   // The study's numbers (FACTS.md): C1 in kPa, experiment-1 frequency in Hz
@@ -48,9 +48,11 @@ namespace
     {"ds20", {"Dragon Skin 20", 116., 4.20, 0.021}},
     {"ds30", {"Dragon Skin 30", 191.6, 5.57, 0.035}}};
 
-  const std::vector<std::string> experiments = {
-    "vertical_%_3d", "planar_%_3d", "spherical_%_3d", "column_%_1d",
-    "planar_%_2d"};
+  const std::vector<std::string> experiments = {"vertical_%_3d",
+                                                "planar_%_3d",
+                                                "spherical_%_3d",
+                                                "column_%_1d",
+                                                "planar_%_2d"};
 
   std::string
   scene_name(const std::string &pattern,
@@ -77,8 +79,8 @@ TEST(BellowsScenes, EveryScenePairsItsSiliconeWithTheLibraryData)
           ASSERT_NO_THROW(parameters.read_file(scene_file(name)));
 
           EXPECT_EQ(parameters.parameter_set,
-                    calibrated ? Parameters::Silicone::ParameterSet::calibrated :
-                                 Parameters::Silicone::ParameterSet::baseline);
+                    calibrated ? Parameters::Silicone::ParameterSet::calibrated
+                               : Parameters::Silicone::ParameterSet::baseline);
           const Parameters::Material &silicone = parameters.by_id.at(1);
           EXPECT_EQ(silicone.silicone, measured.name);
           if (calibrated)

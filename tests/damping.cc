@@ -13,12 +13,11 @@
 
 #include "solver_test_tools.h"
 
+#include <cmath>
 #include <core/soft_robot_dynamics.h>
 #include <deal.II/base/tensor.h>
 #include <deal.II/dofs/dof_tools.h>
 #include <gtest/gtest.h>
-
-#include <cmath>
 #include <random>
 
 using namespace dealii;
@@ -72,8 +71,7 @@ namespace
       << damping_form << "\nend\n"
       << "subsection Loads and constraints\n  set Gravity = 0, 0, 0\n"
       << "  set Fixed components = "
-      << (clamped ? "0: " + std::string("xyz").substr(0, dim) : "")
-      << "\nend\n"
+      << (clamped ? "0: " + std::string("xyz").substr(0, dim) : "") << "\nend\n"
       << "subsection Linear solver\n  set Solver = Direct\nend\n"
       << more;
     return parameter_text(dim, sections.str());
@@ -99,7 +97,7 @@ namespace
   // The nodal values of a vector field of the reference position.
   template <int dim>
   TrilinosWrappers::MPI::Vector
-  interpolate(const Simulation<dim>                           &body,
+  interpolate(const Simulation<dim>                                   &body,
               const std::function<Tensor<1, dim>(const Point<dim> &)> &field)
   {
     TrilinosWrappers::MPI::Vector u(body.displacement());
@@ -108,7 +106,7 @@ namespace
     DoFTools::map_dofs_to_support_points(body.get_mapping(),
                                          dof_handler,
                                          support);
-    const FiniteElement<dim> &fe = dof_handler.get_fe();
+    const FiniteElement<dim>            &fe = dof_handler.get_fe();
     std::vector<types::global_dof_index> dofs(fe.n_dofs_per_cell());
     for (const auto &cell : dof_handler.active_cell_iterators())
       {
@@ -192,8 +190,9 @@ namespace
                      const std::string &formulation,
                      const std::string &form)
   {
-    Simulation<dim> body(read(box(dim, simplices, degree, formulation, 0.01, form, false)),
-                         MPI_COMM_WORLD);
+    Simulation<dim> body(
+      read(box(dim, simplices, degree, formulation, 0.01, form, false)),
+      MPI_COMM_WORLD);
     body.make_grid();
     body.setup_system();
     const Tensor<2, dim> R = rotation<dim>(1.2);
@@ -211,7 +210,8 @@ namespace
       return Tensor<1, dim>(W * (R * X + c) + c_dot);
     };
     const TrilinosWrappers::MPI::Vector zero(body.displacement());
-    const TrilinosWrappers::MPI::Vector u = interpolate<dim>(body, displacement);
+    const TrilinosWrappers::MPI::Vector u =
+      interpolate<dim>(body, displacement);
     const TrilinosWrappers::MPI::Vector v = interpolate<dim>(body, velocity);
     body.record_damping_state(zero);
     TrilinosWrappers::MPI::Vector internal(u), damping(u);
@@ -256,7 +256,7 @@ TYPED_TEST(DampingTest, RigidMotionsAreNotDamped)
           formulations.emplace_back("mean dilatation");
         for (const std::string &formulation : formulations)
           {
-            const double ratio = rigid_motion_force<dim>(simplices,
+            const double ratio  = rigid_motion_force<dim>(simplices,
                                                          degree,
                                                          formulation,
                                                          "Kelvin-Voigt");
@@ -296,8 +296,8 @@ TYPED_TEST(DampingTest, RigidMotionsAreNotDamped)
 // density to be of the size of the other forces at these speeds.)
 TYPED_TEST(DampingTest, TangentIsTheDerivativeOfTheForces)
 {
-  constexpr int dim = TypeParam::value;
-  const double  c_v = 40.;
+  constexpr int     dim     = TypeParam::value;
+  const double      c_v     = 40.;
   const std::string laws[3] = {"Kelvin-Voigt", "drag", "mass"};
   for (const std::string &law : laws)
     for (const unsigned int degree : {1U, 2U})
@@ -306,8 +306,7 @@ TYPED_TEST(DampingTest, TangentIsTheDerivativeOfTheForces)
           if (simplices && dim == 1)
             continue;
           // The drag and the mass damping on two discretizations only.
-          if (law != "Kelvin-Voigt" && dim > 1 &&
-              (degree == 1) == simplices)
+          if (law != "Kelvin-Voigt" && dim > 1 && (degree == 1) == simplices)
             continue;
           std::vector<std::string> formulations = {"displacement"};
           if (dim == 3 && law == "Kelvin-Voigt")
@@ -325,10 +324,11 @@ TYPED_TEST(DampingTest, TangentIsTheDerivativeOfTheForces)
                     law == "drag" ? "subsection Damping\n"
                                     "  set Drag boundary ids = 1\n"
                                     "  set Drag coefficient = 2\n"
-                                    "  set Air density = 1\nend\n" :
-                    law == "mass" ? "subsection Material 1\n"
-                                    "  set Mass damping coefficient = 3000\nend\n" :
-                                    "");
+                                    "  set Air density = 1\nend\n"
+                    : law == "mass"
+                      ? "subsection Material 1\n"
+                        "  set Mass damping coefficient = 3000\nend\n"
+                      : "");
               Simulation<dim> body(read(text), MPI_COMM_WORLD);
               body.make_grid();
               body.setup_system();
@@ -394,7 +394,7 @@ namespace
        const double       revolutions)
   {
     const double       Omega = 10., T = 2. * M_PI / Omega;
-    const unsigned int n     = (dim == 2 && degree == 1) ? 2 : 1;
+    const unsigned int n = (dim == 2 && degree == 1) ? 2 : 1;
     std::ostringstream sections;
     sections
       << "subsection Geometry\n  set Generator = subdivided_hyper_rectangle\n"
@@ -475,8 +475,7 @@ TYPED_TEST(DampingTest, SpinningBodyKeepsItsRotation)
   // the tests. Run by hand, it gives the differences of P1 to two digits
   // (1.6e-4 and 5.0e-6 in the kinetic energy, 8.1e-5 and 2.5e-6 in L_z).
   const std::vector<unsigned int> degrees =
-    (dim == 2) ? std::vector<unsigned int>{1, 2} :
-                 std::vector<unsigned int>{1};
+    (dim == 2) ? std::vector<unsigned int>{1, 2} : std::vector<unsigned int>{1};
   for (const unsigned int degree : degrees)
     {
       std::array<double, 2> energy_difference, momentum_difference;
@@ -494,9 +493,8 @@ TYPED_TEST(DampingTest, SpinningBodyKeepsItsRotation)
             std::abs(undamped.angular_momentum);
           std::cout << dim << "D, p = " << degree << ", dt = " << dt
                     << ": kinetic energy " << undamped.kinetic << " / "
-                    << damped.kinetic << " (difference "
-                    << energy_difference[k] << "), L_z "
-                    << undamped.angular_momentum << " / "
+                    << damped.kinetic << " (difference " << energy_difference[k]
+                    << "), L_z " << undamped.angular_momentum << " / "
                     << damped.angular_momentum << " (difference "
                     << momentum_difference[k] << ")" << std::endl;
         }
@@ -505,7 +503,8 @@ TYPED_TEST(DampingTest, SpinningBodyKeepsItsRotation)
       EXPECT_GT(energy_difference[0] / energy_difference[1], 8.);
       EXPECT_GT(momentum_difference[0] / momentum_difference[1], 8.);
     }
-  const SpinResult undamped = spin<dim>(0., "lagged matrix", 1, 0.01, -0.25, 1.);
+  const SpinResult undamped =
+    spin<dim>(0., "lagged matrix", 1, 0.01, -0.25, 1.);
   const SpinResult lagged =
     spin<dim>(0.001, "lagged matrix", 1, 0.01, -0.25, 1.);
   std::cout << dim << "D, lagged damping matrix: kinetic energy "
@@ -547,16 +546,16 @@ TYPED_TEST(DampingTest, UndampedSpinDecaysAtTheAlgorithmicRate)
     GTEST_SKIP() << "a 1D body cannot rotate";
   const double alpha = -0.25;
   // Three steps in 2D, two in 3D, where each run costs ten times more.
-  const std::vector<double> steps =
-    (dim == 2) ? std::vector<double>{0.01, 0.005, 0.0025} :
-                 std::vector<double>{0.01, 0.005};
-  std::vector<double> energy_loss, momentum_loss;
+  const std::vector<double> steps = (dim == 2)
+                                      ? std::vector<double>{0.01, 0.005, 0.0025}
+                                      : std::vector<double>{0.01, 0.005};
+  std::vector<double>       energy_loss, momentum_loss;
   for (const double dt : steps)
     {
       const SpinResult run = spin<dim>(0., "Kelvin-Voigt", 1, dt, alpha, 4.);
       energy_loss.push_back(1. - run.kinetic / run.kinetic_1);
-      momentum_loss.push_back(1. - run.angular_momentum /
-                              run.angular_momentum_1);
+      momentum_loss.push_back(1. -
+                              run.angular_momentum / run.angular_momentum_1);
     }
   const double xi =
     -alpha * (1. + alpha) * (1. + alpha) * std::pow(0.1, 3) / 8.;
@@ -597,15 +596,16 @@ TYPED_TEST(DampingTest, UndampedSpinDecaysAtTheAlgorithmicRate)
 // and the damping dissipates nothing, to round-off.
 TYPED_TEST(DampingTest, RigidTranslationLosesNothing)
 {
-  constexpr int     dim = TypeParam::value;
+  constexpr int      dim = TypeParam::value;
   std::ostringstream more;
   more << "subsection Initial conditions\n  set Velocity = 1"
        << (dim > 1 ? "; 0.5" : "") << (dim > 2 ? "; -0.3" : "")
        << "\nend\nsubsection Time integration\n  set End time = 0.05\n"
           "  set Time step = 0.01\nend\n";
-  Simulation<dim> body(read(box(dim, false, 1, "displacement", 0.02,
-                                "Kelvin-Voigt", false, more.str())),
-                       MPI_COMM_WORLD);
+  Simulation<dim> body(
+    read(box(
+      dim, false, 1, "displacement", 0.02, "Kelvin-Voigt", false, more.str())),
+    MPI_COMM_WORLD);
   body.make_grid();
   body.setup_system();
   body.initialize_state();
@@ -633,7 +633,7 @@ TYPED_TEST(DampingTest, RigidTranslationLosesNothing)
 // difference (to 2 % from the second-order terms).
 TYPED_TEST(DampingTest, SmallMotionsSeeTheDampingMatrix)
 {
-  constexpr int dim = TypeParam::value;
+  constexpr int   dim = TypeParam::value;
   Simulation<dim> body(
     read(box(dim,
              true && dim > 1,
@@ -653,20 +653,19 @@ TYPED_TEST(DampingTest, SmallMotionsSeeTheDampingMatrix)
   body.setup_system();
   body.solve_static_equilibrium(0.);
   const TrilinosWrappers::MPI::Vector u_e(body.displacement());
-  const auto v = random_vector(body, 0.1, 5);
-  const auto w = random_vector(body, 0.01, 6);
+  const auto                          v = random_vector(body, 0.1, 5);
+  const auto                          w = random_vector(body, 0.01, 6);
   body.record_damping_state(u_e);
   // The damping matrix of u_e applied to v: the lagged form's force.
-  Simulation<dim> reference(
-    read(box(dim,
-             true && dim > 1,
-             2,
-             "displacement",
-             0.01,
-             "lagged matrix",
-             true,
-             "")),
-    MPI_COMM_WORLD);
+  Simulation<dim> reference(read(box(dim,
+                                     true && dim > 1,
+                                     2,
+                                     "displacement",
+                                     0.01,
+                                     "lagged matrix",
+                                     true,
+                                     "")),
+                            MPI_COMM_WORLD);
   reference.make_grid();
   reference.setup_system();
   reference.record_damping_state(u_e);
@@ -709,13 +708,14 @@ TYPED_TEST(DampingTest, SmallMotionsSeeTheDampingMatrix)
 // amplitude by parabolas through three samples: the tolerance is 1 %.
 TEST(DampingTest1D, SmallVibrationHasDampingRatioZetaOmegaOverTwo)
 {
-  const double mu = 100., rho = 1e-6, mu_block = 1e5, rho_block = 1e-4;
-  const double zeta = 4e-4;
+  const double       mu = 100., rho = 1e-6, mu_block = 1e5, rho_block = 1e-4;
+  const double       zeta = 4e-4;
   std::ostringstream geometry;
-  geometry << "subsection Geometry\n  set Generator = subdivided_hyper_rectangle\n"
-              "  set Generator arguments = 25: 0: 125: true\n"
-              "  set Material id function = x > 100 ? 2 : 1\nend\n"
-              "subsection Finite element\n  set Polynomial degree = 2\nend\n";
+  geometry
+    << "subsection Geometry\n  set Generator = subdivided_hyper_rectangle\n"
+       "  set Generator arguments = 25: 0: 125: true\n"
+       "  set Material id function = x > 100 ? 2 : 1\nend\n"
+       "subsection Finite element\n  set Polynomial degree = 2\nend\n";
   const auto material = [](const unsigned int id,
                            const double       shear,
                            const double       density,
@@ -746,11 +746,10 @@ TEST(DampingTest1D, SmallVibrationHasDampingRatioZetaOmegaOverTwo)
   std::ostringstream motion;
   // The velocity of a quasi-static first mode (linear in x on the rod,
   // uniform on the block) at a strain rate of 1e-5 omega.
-  motion << "subsection Initial conditions\n  set Velocity = 1e-5 * "
-         << omega << " * min(x, 100)\nend\n"
+  motion << "subsection Initial conditions\n  set Velocity = 1e-5 * " << omega
+         << " * min(x, 100)\nend\n"
          << "subsection Time integration\n  set Alpha = 0\n  set End time = "
-         << 14. * period << "\n  set Time step = " << period / 200.
-         << "\nend\n"
+         << 14. * period << "\n  set Time step = " << period / 200. << "\nend\n"
          << "subsection Nonlinear solver\n  set Absolute tolerance = 0\n"
             "  set Relative tolerance = 1e-12\nend\n";
   Simulation<1> rod(read(parameter_text(1, common + motion.str())),
@@ -771,9 +770,9 @@ TEST(DampingTest1D, SmallVibrationHasDampingRatioZetaOmegaOverTwo)
         maxima.push_back(tip[k] - b * b / (4. * a));
       }
   ASSERT_GE(maxima.size(), 11u);
-  const double delta      = std::log(maxima[0] / maxima[10]) / 10.;
-  const double xi         = delta / std::sqrt(4. * M_PI * M_PI + delta * delta);
-  const double xi_theory  = zeta * omega / 2.;
+  const double delta     = std::log(maxima[0] / maxima[10]) / 10.;
+  const double xi        = delta / std::sqrt(4. * M_PI * M_PI + delta * delta);
+  const double xi_theory = zeta * omega / 2.;
   std::cout << "omega_1 = " << omega << " rad/s, xi = " << xi
             << ", zeta omega / 2 = " << xi_theory << " (relative error "
             << (xi - xi_theory) / xi_theory << ")" << std::endl;

@@ -42,10 +42,10 @@ TYPED_TEST_SUITE(EnergyBalanceTest, Dimensions);
 
 TYPED_TEST(EnergyBalanceTest, RemainderIsTheAlgorithmicDissipation)
 {
-  constexpr int dim   = TypeParam::value;
-  const double  alpha = -0.2;
-  const double  mu = 10., rho = 1e-6, L = 10., c = std::sqrt(3. * mu / rho);
-  const double  T = L / c; // time for a wave to cross the bar
+  constexpr int     dim   = TypeParam::value;
+  const double      alpha = -0.2;
+  const double      mu = 10., rho = 1e-6, L = 10., c = std::sqrt(3. * mu / rho);
+  const double      T           = L / c; // time for a wave to cross the bar
   const std::string velocity[3] = {"0.1*c*x/L",
                                    "0.2*c*(x/L)^2",
                                    "-0.1*c*(x/L)^2"};
@@ -82,10 +82,9 @@ TYPED_TEST(EnergyBalanceTest, RemainderIsTheAlgorithmicDissipation)
     f_old(body.displacement()), f_tilde_old(body.displacement()),
     f_tilde(body.displacement()), increment(body.displacement()),
     mean(body.displacement());
-  double strain_old = body.internal_force(u_old, f_old);
-  f_tilde_old       = f_old;
-  double kinetic_old =
-    0.5 * M.matrix_norm_square(body.velocity()); // T_0
+  double strain_old        = body.internal_force(u_old, f_old);
+  f_tilde_old              = f_old;
+  double       kinetic_old = 0.5 * M.matrix_norm_square(body.velocity()); // T_0
   const double initial_total = body.energies().kinetic +
                                body.energies().strain +
                                body.energies().gravity_potential;
@@ -126,8 +125,8 @@ TYPED_TEST(EnergyBalanceTest, RemainderIsTheAlgorithmicDissipation)
       kinetic_old = kinetic;
     }
   std::cout << dim << "D: largest |B| " << largest_balance
-            << ", largest work or dissipation " << work
-            << ", largest energy " << largest_energy
+            << ", largest work or dissipation " << work << ", largest energy "
+            << largest_energy
             << "; booked balance minus the algorithmic remainder: "
             << largest_error << " (relative " << largest_error / largest_energy
             << ")" << std::endl;

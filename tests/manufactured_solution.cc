@@ -63,7 +63,8 @@ namespace
   public:
     ExactDisplacement()
       : Function<dim>(dim)
-    {}
+    {
+    }
 
     Tensor<1, dim>
     amplitude() const
@@ -84,8 +85,7 @@ namespace
     Tensor<1, dim>
     gradient(const Point<dim> &X, const unsigned int c) const override
     {
-      return amplitude()[c] * std::sin(omega * this->get_time()) *
-             grad_phi(X);
+      return amplitude()[c] * std::sin(omega * this->get_time()) * grad_phi(X);
     }
 
     static double
@@ -105,8 +105,8 @@ namespace
         {
           gradient[j] = M_PI / L;
           for (unsigned int i = 0; i < dim; ++i)
-            gradient[j] *= (i == j) ? std::cos(M_PI * X[i] / L) :
-                                      std::sin(M_PI * X[i] / L);
+            gradient[j] *=
+              (i == j) ? std::cos(M_PI * X[i] / L) : std::sin(M_PI * X[i] / L);
         }
       return gradient;
     }
@@ -120,7 +120,8 @@ namespace
     ManufacturedBodyForce()
       : Function<dim>(dim)
       , material(mu, kappa)
-    {}
+    {
+    }
 
     void
     vector_value(const Point<dim> &X, Vector<double> &values) const override
@@ -139,8 +140,7 @@ namespace
             divergence[i] += (P_plus[i][J] - P_minus[i][J]) / (2. * h);
         }
       for (unsigned int c = 0; c < dim; ++c)
-        values[c] =
-          -rho * omega * omega * exact.value(X, c) - divergence[c];
+        values[c] = -rho * omega * omega * exact.value(X, c) - divergence[c];
     }
 
   private:
@@ -177,7 +177,8 @@ namespace
         velocity << (c > 0 ? "; " : "") << std::setprecision(17)
                  << A[c] * omega;
         for (unsigned int i = 0; i < dim; ++i)
-          velocity << "*sin(" << M_PI / L << "*" << "xyz"[i] << ")";
+          velocity << "*sin(" << M_PI / L << "*"
+                   << "xyz"[i] << ")";
       }
     for (unsigned int face = 0; face < 2 * dim; ++face)
       fixed << (face > 0 ? ", " : "") << face << ": "
@@ -197,17 +198,15 @@ namespace
       << "subsection Initial conditions\n  set Velocity = " << velocity.str()
       << "\nend\n"
       << "subsection Time integration\n  set Alpha = " << alpha
-      << "\n  set Time step = " << std::setprecision(17)
-      << end_time / n_steps << "\n  set Minimum time step = "
-      << end_time / n_steps / 16. << "\n  set End time = " << end_time
-      << "\nend\n"
+      << "\n  set Time step = " << std::setprecision(17) << end_time / n_steps
+      << "\n  set Minimum time step = " << end_time / n_steps / 16.
+      << "\n  set End time = " << end_time << "\nend\n"
       << "subsection Nonlinear solver\n  set Absolute tolerance = 0\n"
       << "  set Relative tolerance = 1e-11\nend\n"
       << "subsection Linear solver\n  set Solver = Direct\nend\n";
     Parameters::AllParameters parameters;
     parameters.read_string(parameter_text(dim, sections.str()));
-    auto body =
-      std::make_unique<Simulation<dim>>(parameters, MPI_COMM_WORLD);
+    auto body = std::make_unique<Simulation<dim>>(parameters, MPI_COMM_WORLD);
     body->make_grid();
     body->setup_system();
     body->set_body_force(std::make_shared<ManufacturedBodyForce<dim>>());
@@ -222,15 +221,14 @@ namespace
   // The L2 and H1-seminorm errors of the final displacement.
   template <int dim>
   std::pair<double, double>
-  errors_against_exact(const Simulation<dim> &body,
-                       const unsigned int            degree)
+  errors_against_exact(const Simulation<dim> &body, const unsigned int degree)
   {
     ExactDisplacement<dim> exact;
     exact.set_time(end_time);
-    Vector<double>       u(body.displacement());
-    Vector<float>        cellwise(
+    Vector<double> u(body.displacement());
+    Vector<float>  cellwise(
       body.get_dof_handler().get_triangulation().n_active_cells());
-    const QGauss<dim>    quadrature(degree + 3);
+    const QGauss<dim>         quadrature(degree + 3);
     std::pair<double, double> result;
     VectorTools::integrate_difference(body.get_mapping(),
                                       body.get_dof_handler(),
@@ -240,7 +238,9 @@ namespace
                                       quadrature,
                                       VectorTools::L2_norm);
     result.first = VectorTools::compute_global_error(
-      body.get_dof_handler().get_triangulation(), cellwise, VectorTools::L2_norm);
+      body.get_dof_handler().get_triangulation(),
+      cellwise,
+      VectorTools::L2_norm);
     VectorTools::integrate_difference(body.get_mapping(),
                                       body.get_dof_handler(),
                                       u,
@@ -248,10 +248,10 @@ namespace
                                       cellwise,
                                       quadrature,
                                       VectorTools::H1_seminorm);
-    result.second =
-      VectorTools::compute_global_error(body.get_dof_handler().get_triangulation(),
-                                        cellwise,
-                                        VectorTools::H1_seminorm);
+    result.second = VectorTools::compute_global_error(
+      body.get_dof_handler().get_triangulation(),
+      cellwise,
+      VectorTools::H1_seminorm);
     return result;
   }
 
@@ -332,14 +332,14 @@ TYPED_TEST(ManufacturedSolutionTest, SpatialRates)
 // the last difference.
 TYPED_TEST(ManufacturedSolutionTest, TemporalRate)
 {
-  constexpr int                dim      = TypeParam::value;
-  const unsigned int           n_cells  = (dim == 3) ? 3 : 6;
-  const std::vector<unsigned int> steps = {16, 32, 64};
-  const auto reference = run<dim>(1, n_cells, 8 * steps.back(), -0.1);
+  constexpr int                   dim     = TypeParam::value;
+  const unsigned int              n_cells = (dim == 3) ? 3 : 6;
+  const std::vector<unsigned int> steps   = {16, 32, 64};
+  const auto          reference = run<dim>(1, n_cells, 8 * steps.back(), -0.1);
   std::vector<double> differences;
   for (const unsigned int n : steps)
     {
-      const auto body = run<dim>(1, n_cells, n, -0.1);
+      const auto                    body = run<dim>(1, n_cells, n, -0.1);
       TrilinosWrappers::MPI::Vector difference(body->displacement());
       difference -= reference->displacement();
       differences.push_back(difference.l2_norm() /

@@ -59,8 +59,7 @@ namespace
                                      "-0.2*c*(x/L)^2"};
     std::ostringstream sections;
     sections << clamped_bar_sections(dim, mu, rho, L, 2e-3 * L / c)
-             << "  set Function constants = c=" << c << ", L=" << L
-             << "\nend\n"
+             << "  set Function constants = c=" << c << ", L=" << L << "\nend\n"
              << "subsection Initial conditions\n  set Velocity = ";
     for (unsigned int d = 0; d < dim; ++d)
       sections << (d > 0 ? "; " : "") << velocity[d];
@@ -114,20 +113,18 @@ namespace
 
 TYPED_TEST(ModifiedNewtonTest, AccelerationKeepsTheMotionAndSavesIterations)
 {
-  constexpr int dim  = TypeParam::value;
-  const Run     full = swing<dim>("  set Tangent update = every iteration\n");
-  const Run     plain =
-    swing<dim>("  set Tangent update = every step\n"
-               "  set Acceleration depth = 0\n"
-               "  set Tangent extrapolation = false\n");
-  const Run extrapolated =
-    swing<dim>("  set Tangent update = every step\n"
-               "  set Acceleration depth = 0\n"
-               "  set Tangent extrapolation = true\n");
-  const Run accelerated = swing<dim>("  set Tangent update = every step\n"
-                                     "  set Acceleration depth = 2\n"
-                                     "  set Tangent extrapolation = true\n");
-  double largest_tip = 0.;
+  constexpr int dim   = TypeParam::value;
+  const Run     full  = swing<dim>("  set Tangent update = every iteration\n");
+  const Run     plain = swing<dim>("  set Tangent update = every step\n"
+                                   "  set Acceleration depth = 0\n"
+                                   "  set Tangent extrapolation = false\n");
+  const Run     extrapolated = swing<dim>("  set Tangent update = every step\n"
+                                          "  set Acceleration depth = 0\n"
+                                          "  set Tangent extrapolation = true\n");
+  const Run     accelerated  = swing<dim>("  set Tangent update = every step\n"
+                                          "  set Acceleration depth = 2\n"
+                                          "  set Tangent extrapolation = true\n");
+  double        largest_tip  = 0.;
   for (const auto &u : full.tip)
     for (const double value : u)
       largest_tip = std::max(largest_tip, std::abs(value));
@@ -170,10 +167,11 @@ TYPED_TEST(ModifiedNewtonTest, MumpsGivesTheMotionOfKlu)
     swing<dim>("", "  set Solver = Direct\n  set Direct solver = KLU\n", 2.);
   const Run mumps =
     swing<dim>("", "  set Solver = Direct\n  set Direct solver = MUMPS\n", 2.);
-  std::cout << dim << "D: KLU " << klu.newton_iterations << " Newton iterations ("
-            << klu.factorizations << " factorizations), MUMPS "
-            << mumps.newton_iterations << " (" << mumps.factorizations
-            << "); difference " << difference(klu, mumps) << std::endl;
+  std::cout << dim << "D: KLU " << klu.newton_iterations
+            << " Newton iterations (" << klu.factorizations
+            << " factorizations), MUMPS " << mumps.newton_iterations << " ("
+            << mumps.factorizations << "); difference "
+            << difference(klu, mumps) << std::endl;
   EXPECT_GT(klu.tip.size(), 10u);
   EXPECT_LT(difference(klu, mumps), 1e-9);
   // The two runs used the solvers they were given (the class of the solver

@@ -262,13 +262,15 @@ TYPED_TEST(NeoHookeanEnergyTest, FixedSizeADEqualsADHelper)
       EXPECT_LE(stress_error, 1e-13) << "F = " << F;
       EXPECT_LE(stress_only_error, 1e-13) << "F = " << F;
       EXPECT_LE(tangent_error, 1e-13) << "F = " << F;
-      EXPECT_NEAR(stress_only.energy, fast.energy, 1e-13 * std::abs(fast.energy));
-      worst_error = std::max(
-        {worst_error, energy_error, stress_error, tangent_error});
+      EXPECT_NEAR(stress_only.energy,
+                  fast.energy,
+                  1e-13 * std::abs(fast.energy));
+      worst_error =
+        std::max({worst_error, energy_error, stress_error, tangent_error});
     }
   std::cout << "  dim = " << dim
-            << ": worst relative difference from the AD helper "
-            << worst_error << std::endl;
+            << ": worst relative difference from the AD helper " << worst_error
+            << std::endl;
 }
 
 
@@ -572,12 +574,12 @@ TYPED_TEST(NeoHookeanEnergyTest, StressIsDerivativeOfEnergy)
 // these states.)
 TYPED_TEST(NeoHookeanEnergyTest, PositiveSemidefinitePartOfTangent)
 {
-  constexpr int               dim = TypeParam::value;
-  const NeoHookeanEnergy<dim> material(shear_modulus, bulk_modulus);
-  MaterialResponse<dim>       response;
-  std::mt19937                generator(7);
+  constexpr int                          dim = TypeParam::value;
+  const NeoHookeanEnergy<dim>            material(shear_modulus, bulk_modulus);
+  MaterialResponse<dim>                  response;
+  std::mt19937                           generator(7);
   std::uniform_real_distribution<double> uniform(-1., 1.);
-  const auto random_strain = [&]() {
+  const auto                             random_strain = [&]() {
     SymmetricTensor<2, dim> E;
     for (unsigned int i = 0; i < dim; ++i)
       for (unsigned int j = i; j < dim; ++j)

@@ -498,7 +498,7 @@ energy_history(const double alpha)
        "  set Relative tolerance = 1e-11\nend\n"
     << "subsection Linear solver\n  set Solver = Direct\nend\n";
   Simulation<dim> body(read(parameter_text(dim, sections.str())),
-                              MPI_COMM_WORLD);
+                       MPI_COMM_WORLD);
   body.make_grid();
   body.setup_system();
   body.initialize_state();
@@ -593,7 +593,7 @@ check_patch_test(const bool         simplices,
        "  set Relative tolerance = 0\nend\n"
     << "subsection Linear solver\n  set Solver = Direct\nend\n";
   Simulation<dim> body(read(parameter_text(dim, sections.str())),
-                              MPI_COMM_WORLD);
+                       MPI_COMM_WORLD);
   body.make_grid();
   body.setup_system();
   body.solve_static_equilibrium(0.);
@@ -620,7 +620,8 @@ check_patch_test(const bool         simplices,
     }
   std::cout << dim << "D patch test ("
             << (simplices ? "simplices" : "hypercubes") << ", p = " << degree
-            << ", " << formulation << "): largest nodal error " << largest_error << " mm" << std::endl;
+            << ", " << formulation << "): largest nodal error " << largest_error
+            << " mm" << std::endl;
   EXPECT_LT(largest_error, 1e-10);
 }
 

@@ -24,7 +24,8 @@ namespace SoftRobot::Testing
     SimulatorHolder(const Parameters::AllParameters &parameters,
                     const MPI_Comm                   mpi_communicator)
       : owned_simulator(parameters, mpi_communicator)
-    {}
+    {
+    }
     SoftRobotDynamics<dim> owned_simulator;
   };
 
@@ -36,7 +37,8 @@ namespace SoftRobot::Testing
                const MPI_Comm                   mpi_communicator)
       : SimulatorHolder<dim>(parameters, mpi_communicator)
       , SimulatorAccess<dim>(this->owned_simulator)
-    {}
+    {
+    }
 
     void
     run()

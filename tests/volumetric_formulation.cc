@@ -74,8 +74,8 @@ namespace
   template <int dim>
   TrilinosWrappers::MPI::Vector
   random_displacement(const Simulation<dim> &body,
-                      const double                  amplitude,
-                      const unsigned int            seed)
+                      const double           amplitude,
+                      const unsigned int     seed)
   {
     TrilinosWrappers::MPI::Vector    u(body.displacement());
     std::mt19937                     generator(seed);
@@ -90,7 +90,7 @@ namespace
   // force along w against K w: the relative errors.
   template <int dim>
   std::pair<double, double>
-  linearisation_errors(Simulation<dim>              &body,
+  linearisation_errors(Simulation<dim>                     &body,
                        const TrilinosWrappers::MPI::Vector &u,
                        const TrilinosWrappers::MPI::Vector &w)
   {
@@ -209,11 +209,12 @@ TEST(MeanDilatation, EqualsDisplacementFormulationOnLinearTetrahedra)
   std::vector<TrilinosWrappers::MPI::Vector> forces;
   for (const std::string formulation : {"displacement", "mean dilatation"})
     {
-      Simulation<3> body(
-        read(clamped_box(3, true, 1, formulation, 10., 1000.)), MPI_COMM_WORLD);
+      Simulation<3> body(read(clamped_box(3, true, 1, formulation, 10., 1000.)),
+                         MPI_COMM_WORLD);
       body.make_grid();
       body.setup_system();
-      const TrilinosWrappers::MPI::Vector u = random_displacement(body, 0.03, 1);
+      const TrilinosWrappers::MPI::Vector u =
+        random_displacement(body, 0.03, 1);
       forces.emplace_back(u);
       energies.push_back(body.internal_force(u, forces.back()));
     }
@@ -242,7 +243,7 @@ TEST(MeanDilatation, EqualsDisplacementFormulationOnLinearTetrahedra)
 // 3D only: the mean-dilatation formulation exists in 3D only.
 TEST(MeanDilatation, CuresLockingInBending)
 {
-  const double mu = 10.;
+  const double mu             = 10.;
   const auto   youngs_modulus = [mu](const double kappa) {
     return 9. * kappa * mu / (3. * kappa + mu);
   };
@@ -255,9 +256,10 @@ TEST(MeanDilatation, CuresLockingInBending)
       std::vector<double> omega;
       for (const double ratio : {1e2, 1e4})
         {
-          Simulation<3> body(read(clamped_box(
-                                      3, true, 2, formulation, mu, ratio * mu, 4, 4., 1)),
-                                    MPI_COMM_WORLD);
+          Simulation<3> body(
+            read(
+              clamped_box(3, true, 2, formulation, mu, ratio * mu, 4, 4., 1)),
+            MPI_COMM_WORLD);
           body.make_grid();
           body.setup_system();
           omega.push_back(linearised_frequencies(body)[0]);

@@ -84,8 +84,8 @@ namespace SoftRobot
     // number in the order of CellGeometry), the request, and per input
     // vector a pointer to the cell's dofs' values (in the order of the
     // cell's dofs; a constrained dof has the value zero).
-    unsigned int                 cell = 0;
-    AssemblyRequest              request;
+    unsigned int                cell = 0;
+    AssemblyRequest             request;
     std::vector<const double *> input_values;
 
     // Computed by the integral over the cell.

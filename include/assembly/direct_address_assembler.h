@@ -39,7 +39,6 @@
 #define soft_robot_assembly_direct_address_assembler_h
 
 #include <assembly/system_assembler.h>
-
 #include <memory>
 
 class Epetra_Import;
@@ -75,13 +74,13 @@ namespace SoftRobot
     }
 
   private:
-    DirectAddressAssembler(const CellGeometry<dim>              &geometry,
-                           const AffineConstraints<double>      &constraints,
-                           const IndexSet                       &locally_owned_dofs,
-                           const IndexSet                       &locally_relevant_dofs,
+    DirectAddressAssembler(const CellGeometry<dim>         &geometry,
+                           const AffineConstraints<double> &constraints,
+                           const IndexSet                  &locally_owned_dofs,
+                           const IndexSet &locally_relevant_dofs,
                            const TrilinosWrappers::SparseMatrix &matrix,
                            const TrilinosWrappers::MPI::Vector  &vector,
-                           const MPI_Comm                        mpi_communicator);
+                           const MPI_Comm mpi_communicator);
 
     // Whether the addresses can be used on this process.
     static bool
@@ -99,7 +98,7 @@ namespace SoftRobot
     gather(const TrilinosWrappers::MPI::Vector &global,
            std::vector<double>                 &cell_values) const override;
     void
-    begin(const AssemblyRequest                           &request,
+    begin(const AssemblyRequest                        &request,
           const typename SystemAssembler<dim>::Targets &targets) override;
     void
     add(const CellContribution<dim>                  &local,

@@ -37,9 +37,8 @@
 #include <deal.II/lac/affine_constraints.h>
 #include <deal.II/lac/trilinos_sparse_matrix.h>
 #include <deal.II/lac/trilinos_vector.h>
-#include <physics/cell_geometry.h>
-
 #include <functional>
+#include <physics/cell_geometry.h>
 #include <vector>
 
 namespace SoftRobot
@@ -75,7 +74,7 @@ namespace SoftRobot
     // returns the sums and extremes of the cells' scalar results over all
     // processes.
     AssemblyResult
-    assemble(const LocalIntegrator                                    &integrate,
+    assemble(const LocalIntegrator &integrate,
              const std::vector<const TrilinosWrappers::MPI::Vector *> &inputs,
              const AssemblyRequest                                    &request,
              const Targets                                            &targets);
@@ -108,11 +107,11 @@ namespace SoftRobot
 
     // The assembly of the force vectors alone: every cell in turn.
     virtual void
-    assemble_residual(const LocalIntegrator                &integrate,
-                      CellContribution<dim>                &prototype,
+    assemble_residual(const LocalIntegrator                  &integrate,
+                      CellContribution<dim>                  &prototype,
                       const std::vector<std::vector<double>> &cell_values,
-                      const Targets                        &targets,
-                      AssemblyResult                       &result);
+                      const Targets                          &targets,
+                      AssemblyResult                         &result);
 
     // Sets up `local` for `cell` and runs the integral on it.
     void

@@ -16,9 +16,6 @@
 #ifndef soft_robot_core_config_h
 #define soft_robot_core_config_h
 
-#define SOFT_ROBOT_FOR_EACH_DIMENSION(macro) \
-  macro(1)                                   \
-  macro(2)                                   \
-  macro(3)
+#define SOFT_ROBOT_FOR_EACH_DIMENSION(macro) macro(1) macro(2) macro(3)
 
 #endif

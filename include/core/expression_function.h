@@ -13,7 +13,6 @@
 #define soft_robot_core_expression_function_h
 
 #include <deal.II/base/function_parser.h>
-
 #include <map>
 #include <string>
 

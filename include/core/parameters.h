@@ -290,11 +290,11 @@ namespace SoftRobot
       double        newton_absolute_tolerance;
       double        newton_relative_tolerance;
       TangentUpdate tangent_update;
-      unsigned int acceleration_depth;
-      bool         tangent_extrapolation;
-      bool         line_search;
-      unsigned int max_line_search_steps;
-      bool         verbose;
+      unsigned int  acceleration_depth;
+      bool          tangent_extrapolation;
+      bool          line_search;
+      unsigned int  max_line_search_steps;
+      bool          verbose;
 
       static void
       declare_parameters(ParameterHandler &prm);
@@ -320,8 +320,8 @@ namespace SoftRobot
       DirectSolverType direct_solver;
       double           linear_relative_tolerance;
       unsigned int     linear_max_iterations;
-      unsigned int smoother_sweeps;
-      double       aggregation_threshold;
+      unsigned int     smoother_sweeps;
+      double           aggregation_threshold;
 
       static void
       declare_parameters(ParameterHandler &prm);
@@ -342,19 +342,19 @@ namespace SoftRobot
         replace
       };
       ExistingOutput existing_output;
-      double       output_interval;
+      double         output_interval;
       enum class TipRegionType
       {
         boundary,
         material
       };
       TipRegionType tip_region_type;
-      unsigned int tip_region_id;
-      std::string  trajectory_file;
-      unsigned int progress_interval;
-      unsigned int checkpoint_interval;
-      bool         spectral_analysis;
-      double       spectral_skip;
+      unsigned int  tip_region_id;
+      std::string   trajectory_file;
+      unsigned int  progress_interval;
+      unsigned int  checkpoint_interval;
+      bool          spectral_analysis;
+      double        spectral_skip;
 
       static void
       declare_parameters(ParameterHandler &prm);

@@ -16,7 +16,6 @@
 #define soft_robot_core_simulator_access_h
 
 #include <core/soft_robot_dynamics.h>
-
 #include <memory>
 #include <string>
 #include <utility>

@@ -49,6 +49,7 @@
 #include <assembly/system_assembler.h>
 #include <core/exceptions.h>
 #include <core/parameters.h>
+#include <core/plausibility_guard.h>
 #include <deal.II/base/conditional_ostream.h>
 #include <deal.II/base/function.h>
 #include <deal.II/base/function_parser.h>
@@ -63,7 +64,7 @@
 #include <deal.II/lac/trilinos_sparse_matrix.h>
 #include <deal.II/lac/trilinos_vector.h>
 #include <deal.II/numerics/data_out.h>
-#include <core/plausibility_guard.h>
+#include <memory>
 #include <output/cell_data.h>
 #include <output/checkpoint.h>
 #include <output/field_output.h>
@@ -82,8 +83,6 @@
 #include <solvers/rank_one_correction.h>
 #include <solvers/time_step_controller.h>
 #include <time_integration/hht_stepper.h>
-
-#include <memory>
 #include <vector>
 
 namespace SoftRobot
@@ -208,10 +207,11 @@ namespace SoftRobot
     // The Newton problem whose residual is `evaluate` and whose tangent
     // is system_matrix, solved by the linear solver.
     NewtonSolver::Problem
-    newton_problem(const std::function<AssemblyResult(
-                     const TrilinosWrappers::MPI::Vector &,
-                     const bool,
-                     TrilinosWrappers::MPI::Vector &)> &evaluate);
+    newton_problem(
+      const std::function<AssemblyResult(const TrilinosWrappers::MPI::Vector &,
+                                         const bool,
+                                         TrilinosWrappers::MPI::Vector &)>
+        &evaluate);
 
     // @sect4{The assemblies}
     //
@@ -244,7 +244,7 @@ namespace SoftRobot
     // damping's; and their matrices times `factor`, added to `matrix`.
     void
     add_global_damping_forces(const TrilinosWrappers::MPI::Vector &v,
-                              TrilinosWrappers::MPI::Vector &force) const;
+                              TrilinosWrappers::MPI::Vector       &force) const;
     void
     add_global_damping_matrices(const double                    factor,
                                 TrilinosWrappers::SparseMatrix &matrix) const;
@@ -312,7 +312,7 @@ namespace SoftRobot
     AffineConstraints<double>            constraints;
 
     // The physics and the global addition.
-    CellGeometry<dim>                     cell_geometry;
+    CellGeometry<dim>                       cell_geometry;
     std::unique_ptr<HyperelasticSolid<dim>> solid;
     std::unique_ptr<AerodynamicDrag<dim>>   drag;
     std::unique_ptr<PneumaticLoad<dim>>     pneumatics;

@@ -80,9 +80,9 @@
 #define soft_robot_material_neo_hookean_energy_h
 
 #include <cmath>
-#include <type_traits>
 #include <deal.II/base/symmetric_tensor.h>
 #include <deal.II/base/tensor.h>
+#include <type_traits>
 
 namespace SoftRobot
 {

@@ -57,7 +57,6 @@
 #include <deal.II/fe/mapping.h>
 #include <physics/boundary_faces.h>
 #include <physics/cell_geometry.h>
-
 #include <vector>
 
 namespace SoftRobot

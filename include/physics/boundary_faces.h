@@ -24,7 +24,6 @@
 #include <deal.II/dofs/dof_handler.h>
 #include <deal.II/fe/mapping.h>
 #include <physics/cell_geometry.h>
-
 #include <vector>
 
 namespace SoftRobot
@@ -37,12 +36,12 @@ namespace SoftRobot
   public:
     // The faces of the locally owned cells on the boundary ids `ids`, in the
     // cell numbering of `geometry`. With no ids no cell has faces.
-    BoundaryFaces(const Parameters::AllParameters        &parameters,
-                  const CellGeometry<dim>                &geometry,
-                  const Mapping<dim>                     &mapping,
-                  const DoFHandler<dim>                  &dof_handler,
-                  const Quadrature<dim - 1>              &quadrature,
-                  const std::vector<unsigned int>        &ids);
+    BoundaryFaces(const Parameters::AllParameters &parameters,
+                  const CellGeometry<dim>         &geometry,
+                  const Mapping<dim>              &mapping,
+                  const DoFHandler<dim>           &dof_handler,
+                  const Quadrature<dim - 1>       &quadrature,
+                  const std::vector<unsigned int> &ids);
 
     // Whether the cell (in the numbering of CellGeometry) has such faces.
     bool

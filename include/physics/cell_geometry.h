@@ -40,9 +40,9 @@ namespace SoftRobot
     // body it stands for (the cross-section area of the 1D column, the
     // thickness of the 2D strip, one in 3D), per material id.
     void
-    reinit(const Mapping<dim>                                  &mapping,
-           const DoFHandler<dim>                               &dof_handler,
-           const Quadrature<dim>                               &quadrature,
+    reinit(const Mapping<dim>                                    &mapping,
+           const DoFHandler<dim>                                 &dof_handler,
+           const Quadrature<dim>                                 &quadrature,
            const std::function<double(const types::material_id)> &section);
 
     unsigned int n_cells       = 0;

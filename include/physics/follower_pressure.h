@@ -180,12 +180,12 @@ namespace SoftRobot
     reference_area(const MPI_Comm mpi_communicator) const;
 
   private:
-    const bool                end_load;
-    double                    end_load_factor = 0.; // A_eq / A_end
-    const unsigned int        axis;
-    const double              origin;
-    const bool                symmetric_tangent;
-    const unsigned int        n_cells;
+    const bool         end_load;
+    double             end_load_factor = 0.; // A_eq / A_end
+    const unsigned int axis;
+    const double       origin;
+    const bool         symmetric_tangent;
+    const unsigned int n_cells;
     const std::vector<types::global_dof_index> &dof_indices;
     using BoundaryFaces<dim>::n_q_points;
     using BoundaryFaces<dim>::dofs_per_cell;

@@ -65,12 +65,11 @@
 
 #include <assembly/cell_contribution.h>
 #include <core/parameters.h>
+#include <map>
 #include <material/neo_hookean_energy.h>
+#include <memory>
 #include <physics/cell_geometry.h>
 #include <physics/kelvin_voigt_damping.h>
-
-#include <map>
-#include <memory>
 #include <utility>
 #include <vector>
 
@@ -172,9 +171,9 @@ namespace SoftRobot
                            MaterialResponse<dim> &response,
                            CellContribution<dim> &local) const;
 
-    const CellGeometry<dim> &geometry;
-    const bool               mean_dilatation;
-    bool                     damped = false;
+    const CellGeometry<dim>                            &geometry;
+    const bool                                          mean_dilatation;
+    bool                                                damped = false;
     std::map<types::material_id, NeoHookeanEnergy<dim>> laws;
     // Per cell: its law and damping coefficient $\zeta$.
     std::vector<const NeoHookeanEnergy<dim> *> cell_law;

@@ -27,7 +27,6 @@
 #include <deal.II/lac/affine_constraints.h>
 #include <deal.II/lac/trilinos_sparse_matrix.h>
 #include <deal.II/lac/trilinos_vector.h>
-
 #include <map>
 #include <vector>
 
@@ -84,7 +83,7 @@ namespace SoftRobot
     angular_momentum(const DoFHandler<dim>               &dof_handler,
                      const TrilinosWrappers::MPI::Vector &u,
                      const TrilinosWrappers::MPI::Vector &v,
-                     const MPI_Comm                       mpi_communicator) const;
+                     const MPI_Comm mpi_communicator) const;
 
   private:
     void

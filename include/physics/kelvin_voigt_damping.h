@@ -113,7 +113,6 @@
 #include <deal.II/base/symmetric_tensor.h>
 #include <deal.II/base/tensor.h>
 #include <physics/cell_geometry.h>
-
 #include <vector>
 
 namespace SoftRobot
@@ -137,11 +136,11 @@ namespace SoftRobot
     // tangent (from which the viscosity is recorded).
     struct PointKinematics
     {
-      unsigned int                          q;
-      const Tensor<2, dim>                 *F;
-      const Tensor<2, dim>                 *L;
+      unsigned int                                q;
+      const Tensor<2, dim>                       *F;
+      const Tensor<2, dim>                       *L;
       const std::vector<SymmetricTensor<2, dim>> *delta_E;
-      const SymmetricTensor<4, dim>        *material_tangent;
+      const SymmetricTensor<4, dim>              *material_tangent;
     };
 
     // The viscous force of point q into `local.second_force`; with a matrix
@@ -169,13 +168,13 @@ namespace SoftRobot
     // The viscous pressure $p_v = \kappa_v\,\mathbf g\cdot\mathbf v/V_{0,e}$
     // of the cell (zero for cells without damping).
     double
-    viscous_pressure(const unsigned int     cell,
-                     const double           reference_volume,
-                     const Vector<double>  &volume_gradient,
-                     const double          *cell_v) const;
+    viscous_pressure(const unsigned int    cell,
+                     const double          reference_volume,
+                     const Vector<double> &volume_gradient,
+                     const double         *cell_v) const;
 
   private:
-    const CellGeometry<dim> &geometry;
+    const CellGeometry<dim>  &geometry;
     const std::vector<double> cell_zeta;
     const bool                symmetric_tangent;
     // The positive part of the material tangent at the step's first state,

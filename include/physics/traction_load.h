@@ -26,7 +26,6 @@
 #include <deal.II/fe/mapping.h>
 #include <deal.II/lac/affine_constraints.h>
 #include <deal.II/lac/trilinos_vector.h>
-
 #include <vector>
 
 namespace SoftRobot

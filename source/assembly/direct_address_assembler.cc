@@ -8,13 +8,12 @@
 #include <Epetra_Import.h>
 #include <Epetra_Map.h>
 #include <Epetra_Vector.h>
+#include <algorithm>
+#include <array>
 #include <assembly/direct_address_assembler.h>
 #include <core/config.h>
 #include <deal.II/base/multithread_info.h>
 #include <deal.II/base/thread_management.h>
-
-#include <algorithm>
-#include <array>
 
 namespace SoftRobot
 {
@@ -70,16 +69,16 @@ namespace SoftRobot
     for (const auto &line : constraints.get_lines())
       if (!line.entries.empty() || line.inhomogeneity != 0.)
         return false;
-    int    *offsets = nullptr, *columns = nullptr;
-    double *values  = nullptr;
-    const Epetra_CrsMatrix &A = matrix.trilinos_matrix();
+    int                    *offsets = nullptr, *columns = nullptr;
+    double                 *values = nullptr;
+    const Epetra_CrsMatrix &A      = matrix.trilinos_matrix();
     if (A.ExtractCrsDataPointers(offsets, columns, values) != 0)
       return false;
     if (second_matrix == nullptr)
       return true;
-    int    *second_offsets = nullptr, *second_columns = nullptr;
-    double *second_values  = nullptr;
-    const Epetra_CrsMatrix &B = second_matrix->trilinos_matrix();
+    int                    *second_offsets = nullptr, *second_columns = nullptr;
+    double                 *second_values = nullptr;
+    const Epetra_CrsMatrix &B             = second_matrix->trilinos_matrix();
     return B.ExtractCrsDataPointers(second_offsets,
                                     second_columns,
                                     second_values) == 0 &&
@@ -136,14 +135,11 @@ namespace SoftRobot
     std::sort(ghosts.begin(), ghosts.end());
     ghosts.erase(std::unique(ghosts.begin(), ghosts.end()), ghosts.end());
     const Epetra_BlockMap &vector_map = vector.trilinos_vector().Map();
-    ghost_map          = std::make_unique<Epetra_Map>(-1,
-                                             static_cast<int>(ghosts.size()),
-                                             ghosts.data(),
-                                             0,
-                                             vector_map.Comm());
-    ghost_import       = std::make_unique<Epetra_Import>(*ghost_map, vector_map);
-    ghost_values       = std::make_unique<Epetra_Vector>(*ghost_map);
-    ghost_force        = std::make_unique<Epetra_Vector>(*ghost_map);
+    ghost_map                         = std::make_unique<Epetra_Map>(
+      -1, static_cast<int>(ghosts.size()), ghosts.data(), 0, vector_map.Comm());
+    ghost_import = std::make_unique<Epetra_Import>(*ghost_map, vector_map);
+    ghost_values = std::make_unique<Epetra_Vector>(*ghost_map);
+    ghost_force  = std::make_unique<Epetra_Vector>(*ghost_map);
     ghost_second_force = std::make_unique<Epetra_Vector>(*ghost_map);
   }
 
@@ -158,9 +154,9 @@ namespace SoftRobot
   {
     const CellGeometry<dim>         &geometry    = this->geometry;
     const AffineConstraints<double> &constraints = this->constraints;
-    int    *row_offsets = nullptr, *columns = nullptr;
-    double *values      = nullptr;
-    const Epetra_CrsMatrix &matrix = global_matrix.trilinos_matrix();
+    int                             *row_offsets = nullptr, *columns = nullptr;
+    double                          *values = nullptr;
+    const Epetra_CrsMatrix          &matrix = global_matrix.trilinos_matrix();
     matrix.ExtractCrsDataPointers(row_offsets, columns, values);
     const Epetra_BlockMap &vector_map = vector.trilinos_vector().Map();
 
@@ -186,15 +182,15 @@ namespace SoftRobot
         const types::global_dof_index *dofs = &geometry.dof_indices[cell * n];
         for (unsigned int i = 0; i < n; ++i)
           {
-            const unsigned int            k     = cell * n + i;
-            const types::global_dof_index dof   = dofs[i];
-            const bool                    fixed = constraints.is_constrained(dof);
+            const unsigned int            k   = cell * n + i;
+            const types::global_dof_index dof = dofs[i];
+            const bool fixed                  = constraints.is_constrained(dof);
             const bool owned = this->locally_owned_dofs.is_element(dof);
             if (fixed)
               vector_positions[k] = -1;
             else if (owned)
-              vector_positions[k] =
-                vector_map.LID(static_cast<TrilinosWrappers::types::int_type>(dof));
+              vector_positions[k] = vector_map.LID(
+                static_cast<TrilinosWrappers::types::int_type>(dof));
             else
               vector_positions[k] =
                 -2 - ghost_map->LID(
@@ -209,9 +205,9 @@ namespace SoftRobot
             diagonal_positions[k] = fixed ? position(dof, dof) : -1;
             for (unsigned int j = 0; j < n; ++j)
               matrix_positions[k * n + j] =
-                (fixed || constraints.is_constrained(dofs[j])) ?
-                  -1 :
-                  position(dof, dofs[j]);
+                (fixed || constraints.is_constrained(dofs[j]))
+                  ? -1
+                  : position(dof, dofs[j]);
           }
       }
   }
@@ -239,9 +235,9 @@ namespace SoftRobot
     for (std::size_t k = 0; k < cell_values.size(); ++k)
       {
         const int position = vector_positions[k];
-        cell_values[k]     = (position >= 0)  ? values[position] :
-                             (position == -1) ? 0. :
-                                                ghosts[-2 - position];
+        cell_values[k]     = (position >= 0)    ? values[position]
+                             : (position == -1) ? 0.
+                                                : ghosts[-2 - position];
       }
   }
 
@@ -290,9 +286,9 @@ namespace SoftRobot
     AssertDimension(cell_matrix.n(), n);
     AssertIndexRange(local.cell * n * n + n * n - 1, matrix_positions.size());
     AssertIndexRange(local.cell * n + n - 1, diagonal_positions.size());
-    const int   *matrix_position   = &matrix_positions[local.cell * n * n];
-    const int   *diagonal_position = &diagonal_positions[local.cell * n];
-    const double *entries          = &cell_matrix(0, 0);
+    const int    *matrix_position   = &matrix_positions[local.cell * n * n];
+    const int    *diagonal_position = &diagonal_positions[local.cell * n];
+    const double *entries           = &cell_matrix(0, 0);
     for (unsigned int k = 0; k < n * n; ++k)
       if (matrix_position[k] >= 0)
         values[matrix_position[k]] += entries[k];
@@ -306,9 +302,9 @@ namespace SoftRobot
       mean_diagonal = 1.;
     for (unsigned int i = 0; i < n; ++i)
       {
-        const double diagonal = (cell_matrix(i, i) != 0.) ?
-                                  std::abs(cell_matrix(i, i)) :
-                                  mean_diagonal;
+        const double diagonal = (cell_matrix(i, i) != 0.)
+                                  ? std::abs(cell_matrix(i, i))
+                                  : mean_diagonal;
         if (diagonal_position[i] >= 0)
           values[diagonal_position[i]] += diagonal;
         else if (diagonal_position[i] == -2)
@@ -336,10 +332,10 @@ namespace SoftRobot
     const unsigned int n = this->geometry.dofs_per_cell;
     AssertDimension(cell_vector.size(), n);
     AssertIndexRange(local.cell * n + n - 1, vector_positions.size());
-    Assert(ghost_values != nullptr || std::none_of(
-                                        &vector_positions[local.cell * n],
-                                        &vector_positions[local.cell * n] + n,
-                                        [](const int p) { return p <= -2; }),
+    Assert(ghost_values != nullptr ||
+             std::none_of(&vector_positions[local.cell * n],
+                          &vector_positions[local.cell * n] + n,
+                          [](const int p) { return p <= -2; }),
            ExcMessage("A row of another process without a ghost vector."));
     const int *position = &vector_positions[local.cell * n];
     for (unsigned int i = 0; i < n; ++i)
@@ -478,8 +474,8 @@ namespace SoftRobot
         result.strain_energy += part_result[part].strain_energy;
         result.min_jacobian =
           std::min(result.min_jacobian, part_result[part].min_jacobian);
-        result.inverted_point_found = result.inverted_point_found ||
-                                      part_result[part].inverted_point_found;
+        result.inverted_point_found =
+          result.inverted_point_found || part_result[part].inverted_point_found;
       }
   }
 

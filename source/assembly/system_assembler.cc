@@ -4,12 +4,11 @@
 //
 // See include/assembly/system_assembler.h.
 
+#include <algorithm>
 #include <assembly/system_assembler.h>
 #include <core/config.h>
 #include <deal.II/base/multithread_info.h>
 #include <deal.II/base/work_stream.h>
-
-#include <algorithm>
 #include <numeric>
 
 namespace SoftRobot
@@ -19,7 +18,8 @@ namespace SoftRobot
     // WorkStream's per-thread scratch object; the cell integrals keep their
     // work space in the CellContribution instead.
     struct NoScratch
-    {};
+    {
+    };
   } // namespace
 
 
@@ -36,7 +36,8 @@ namespace SoftRobot
     , locally_owned_dofs(locally_owned_dofs)
     , locally_relevant_dofs(locally_relevant_dofs)
     , mpi_communicator(mpi_communicator)
-  {}
+  {
+  }
 
 
 
@@ -81,7 +82,9 @@ namespace SoftRobot
         WorkStream::run(
           cells.data(),
           cells.data() + cells.size(),
-          [&](const unsigned int *cell, NoScratch &, CellContribution<dim> &local) {
+          [&](const unsigned int *cell,
+              NoScratch &,
+              CellContribution<dim> &local) {
             integrate_cell(integrate, *cell, cell_values, local);
           },
           [&](const CellContribution<dim> &local) {
@@ -166,7 +169,8 @@ namespace SoftRobot
   template <int dim>
   void
   SystemAssembler<dim>::begin(const AssemblyRequest &, const Targets &)
-  {}
+  {
+  }
 
 
 

@@ -7,7 +7,6 @@
 #include <core/config.h>
 #include <core/expression_function.h>
 #include <deal.II/base/utilities.h>
-
 #include <sstream>
 
 namespace SoftRobot
@@ -76,7 +75,7 @@ namespace SoftRobot
 
 
 
-#define SOFT_ROBOT_INSTANTIATE(dim)                                   \
+#define SOFT_ROBOT_INSTANTIATE(dim)                                    \
   template void initialize_vector_function<dim>(FunctionParser<dim> &, \
                                                 const std::string &,   \
                                                 const std::string &,   \

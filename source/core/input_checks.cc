@@ -81,7 +81,7 @@ namespace SoftRobot
         const std::string       text = Parameters::one_line(info.str());
         static const std::regex said("The parser said: (.*)");
         std::smatch             match;
-        std::string reason =
+        std::string             reason =
           std::regex_search(text, match, said) ? match[1].str() : text;
         while (!reason.empty() && reason.back() == '.')
           reason.pop_back();

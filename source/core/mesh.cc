@@ -13,7 +13,6 @@
 #include <deal.II/grid/grid_generator.h>
 #include <deal.II/grid/grid_in.h>
 #include <deal.II/grid/grid_tools.h>
-
 #include <fstream>
 #include <set>
 #include <sstream>
@@ -35,17 +34,15 @@ namespace SoftRobot
     read_mesh_file(const Parameters::AllParameters &parameters,
                    Triangulation<dim>              &serial)
     {
-      const std::string where =
-        parameters.where() + "Geometry/Mesh file '" + parameters.mesh_file +
-        "' ";
+      const std::string where = parameters.where() + "Geometry/Mesh file '" +
+                                parameters.mesh_file + "' ";
       std::ifstream input(parameters.mesh_file);
       AssertThrow(input, ExcMessage(where + "cannot be opened."));
       std::string first_word;
       input >> first_word;
       AssertThrow(!first_word.empty(), ExcMessage(where + "is empty."));
       AssertThrow(first_word == "$MeshFormat",
-                  ExcMessage(where +
-                             "is not a gmsh mesh: it starts with '" +
+                  ExcMessage(where + "is not a gmsh mesh: it starts with '" +
                              first_word.substr(0, 40) +
                              "' instead of '$MeshFormat' (formats 2.2 and 4.1 "
                              "are read, written as ASCII)."));
@@ -89,8 +86,7 @@ namespace SoftRobot
   create_mesh(const Parameters::AllParameters &parameters,
               Triangulation<dim>              &serial)
   {
-    if (parameters.mesh_source ==
-        Parameters::Geometry::MeshSource::generator)
+    if (parameters.mesh_source == Parameters::Geometry::MeshSource::generator)
       {
         Triangulation<dim> generated;
         try
@@ -110,8 +106,8 @@ namespace SoftRobot
                                    parameters.generator_name +
                                    "' does not accept the arguments '" +
                                    parameters.generator_arguments + "' in " +
-                                   std::to_string(dim) + "D: " +
-                                   Parameters::one_line(reason.str())));
+                                   std::to_string(dim) +
+                                   "D: " + Parameters::one_line(reason.str())));
           }
         if (parameters.convert_to_simplices && dim > 1)
           GridGenerator::convert_hypercube_to_simplex_mesh(generated, serial);
@@ -124,8 +120,7 @@ namespace SoftRobot
     if (parameters.distortion > 0)
       GridTools::distort_random(parameters.distortion, serial, true);
 
-    if (parameters.mesh_source ==
-        Parameters::Geometry::MeshSource::generator)
+    if (parameters.mesh_source == Parameters::Geometry::MeshSource::generator)
       for (const auto &cell : serial.active_cell_iterators())
         cell->set_material_id(1);
     if (!parameters.material_id_function.empty())
@@ -137,9 +132,10 @@ namespace SoftRobot
         FunctionParser<dim> id_function(1);
         try
           {
-            id_function.initialize(FunctionParser<dim>::default_variable_names(),
-                                   parameters.material_id_function,
-                                   parse_constants(parameters.constants));
+            id_function.initialize(
+              FunctionParser<dim>::default_variable_names(),
+              parameters.material_id_function,
+              parse_constants(parameters.constants));
           }
         catch (ExceptionBase &error)
           {
@@ -161,19 +157,18 @@ namespace SoftRobot
         for (const auto &cell : serial.active_cell_iterators())
           {
             const long id = std::lround(id_function.value(cell->center()));
-            AssertThrow(id >= 0 && id <= Parameters::Materials::max_material_id,
-                        ExcMessage(parameters.where() + entry + " = '" +
-                                   parameters.material_id_function +
-                                   "' gives the material id " +
-                                   std::to_string(id) + " at the centre of a "
-                                   "cell; ids are 0 to " +
-                                   std::to_string(
-                                     Parameters::Materials::max_material_id) +
-                                   "."));
+            AssertThrow(
+              id >= 0 && id <= Parameters::Materials::max_material_id,
+              ExcMessage(
+                parameters.where() + entry + " = '" +
+                parameters.material_id_function + "' gives the material id " +
+                std::to_string(id) +
+                " at the centre of a "
+                "cell; ids are 0 to " +
+                std::to_string(Parameters::Materials::max_material_id) + "."));
             cell->set_material_id(static_cast<types::material_id>(id));
           }
       }
-
   }
 
 
@@ -186,10 +181,10 @@ namespace SoftRobot
     std::string
     mesh_name(const Parameters::AllParameters &parameters)
     {
-      return (parameters.mesh_source == Parameters::Geometry::MeshSource::file) ?
-               "the mesh file '" + parameters.mesh_file + "'" :
-               "the mesh of Geometry/Generator '" + parameters.generator_name +
-                 "'";
+      return (parameters.mesh_source == Parameters::Geometry::MeshSource::file)
+               ? "the mesh file '" + parameters.mesh_file + "'"
+               : "the mesh of Geometry/Generator '" +
+                   parameters.generator_name + "'";
     }
   } // namespace
 
@@ -253,11 +248,11 @@ namespace SoftRobot
 
 
 
-#define SOFT_ROBOT_INSTANTIATE(dim)                                   \
-  template void create_mesh<dim>(const Parameters::AllParameters &,   \
-                                 Triangulation<dim> &);               \
-  template unsigned int check_mesh_ids<dim>(                          \
-    const Parameters::AllParameters &, const Triangulation<dim> &);
+#define SOFT_ROBOT_INSTANTIATE(dim)                                            \
+  template void         create_mesh<dim>(const Parameters::AllParameters &,    \
+                                 Triangulation<dim> &);                \
+  template unsigned int check_mesh_ids<dim>(const Parameters::AllParameters &, \
+                                            const Triangulation<dim> &);
   SOFT_ROBOT_FOR_EACH_DIMENSION(SOFT_ROBOT_INSTANTIATE)
 #undef SOFT_ROBOT_INSTANTIATE
 } // namespace SoftRobot

@@ -63,7 +63,7 @@ namespace SoftRobot
     Problem::parse_parameters(ParameterHandler &prm)
     {
       prm.enter_subsection("Problem");
-      dimension        = prm.get_integer("Dimension");
+      dimension            = prm.get_integer("Dimension");
       output_directory     = prm.get("Output directory");
       runaway_displacement = prm.get_double("Run-away displacement");
       runaway_speed        = prm.get_double("Run-away speed");
@@ -139,9 +139,9 @@ namespace SoftRobot
     Geometry::parse_parameters(ParameterHandler &prm)
     {
       prm.enter_subsection("Geometry");
-      mesh_source = (prm.get("Mesh source") == "file") ? MeshSource::file :
-                                                         MeshSource::generator;
-      generator_name       = prm.get("Generator");
+      mesh_source    = (prm.get("Mesh source") == "file") ? MeshSource::file
+                                                          : MeshSource::generator;
+      generator_name = prm.get("Generator");
       generator_arguments  = prm.get("Generator arguments");
       mesh_file            = prm.get("Mesh file");
       global_refinements   = prm.get_integer("Global refinements");
@@ -209,9 +209,9 @@ namespace SoftRobot
       degree            = prm.get_integer("Polynomial degree");
       quadrature_points = prm.get_integer("Quadrature points");
       volumetric_formulation =
-        (prm.get("Volumetric formulation") == "mean dilatation") ?
-          VolumetricFormulation::mean_dilatation :
-          VolumetricFormulation::displacement;
+        (prm.get("Volumetric formulation") == "mean dilatation")
+          ? VolumetricFormulation::mean_dilatation
+          : VolumetricFormulation::displacement;
       direct_addresses = prm.get_bool("Direct addresses");
       prm.leave_subsection();
     }
@@ -342,9 +342,9 @@ namespace SoftRobot
     double
     Silicone::shear_modulus(const ParameterSet parameter_set) const
     {
-      return (parameter_set == ParameterSet::calibrated) ?
-               calibrated_shear_modulus :
-               c1;
+      return (parameter_set == ParameterSet::calibrated)
+               ? calibrated_shear_modulus
+               : c1;
     }
 
     double
@@ -358,9 +358,9 @@ namespace SoftRobot
     {
       silicones.clear();
       prm.enter_subsection("Silicone library");
-      parameter_set = (prm.get("Parameter set") == "calibrated") ?
-                        Silicone::ParameterSet::calibrated :
-                        Silicone::ParameterSet::baseline;
+      parameter_set = (prm.get("Parameter set") == "calibrated")
+                        ? Silicone::ParameterSet::calibrated
+                        : Silicone::ParameterSet::baseline;
       for (unsigned int i = 1; i <= max_silicones; ++i)
         {
           prm.enter_subsection("Silicone " + std::to_string(i));
@@ -395,12 +395,13 @@ namespace SoftRobot
               material.density       = prm.get_double("Density");
               material.mass          = prm.get_double("Mass");
               material.damping_zeta  = prm.get_double("Damping coefficient");
-              material.mass_damping = prm.get_double("Mass damping coefficient");
-              material.section       = prm.get_double("Section");
-              material.silicone      = prm.get("Silicone");
+              material.mass_damping =
+                prm.get_double("Mass damping coefficient");
+              material.section  = prm.get_double("Section");
+              material.silicone = prm.get("Silicone");
               if (!material.silicone.empty())
                 {
-                  const auto entry = silicones.find(material.silicone);
+                  const auto  entry = silicones.find(material.silicone);
                   std::string known;
                   for (const auto &[name, silicone] : silicones)
                     known += " '" + name + "'";
@@ -413,8 +414,7 @@ namespace SoftRobot
                                          known + ")."));
                   const Silicone &silicone = entry->second;
                   AssertThrow(silicone.shear_modulus(parameter_set) > 0,
-                              ExcMessage("Silicone library: '" +
-                                         silicone.name +
+                              ExcMessage("Silicone library: '" + silicone.name +
                                          "' has no Calibrated shear modulus "
                                          "(it is 0), but the Parameter set "
                                          "is 'calibrated'."));
@@ -424,7 +424,7 @@ namespace SoftRobot
                     silicone.bulk_to_shear_ratio * material.shear_modulus;
                   material.damping_zeta = silicone.damping_coefficient();
                 }
-              by_id[id]              = material;
+              by_id[id] = material;
             }
           prm.leave_subsection();
         }
@@ -476,9 +476,9 @@ namespace SoftRobot
     {
       prm.enter_subsection("Damping");
       stiffness_damping =
-        (prm.get("Stiffness-proportional damping") == "lagged matrix") ?
-          StiffnessDamping::lagged_matrix :
-          StiffnessDamping::kelvin_voigt;
+        (prm.get("Stiffness-proportional damping") == "lagged matrix")
+          ? StiffnessDamping::lagged_matrix
+          : StiffnessDamping::kelvin_voigt;
       drag_boundary_ids.clear();
       for (const int id : Utilities::string_to_int(
              Utilities::split_string_list(prm.get("Drag boundary ids"))))
@@ -668,9 +668,9 @@ namespace SoftRobot
       for (const int id : Utilities::string_to_int(
              Utilities::split_string_list(prm.get("Pressure boundary ids"))))
         pressure_boundary_ids.push_back(id);
-      pressure_model       = (prm.get("Pressure model") == "gas") ?
-                               PressureModel::gas :
-                               PressureModel::prescribed;
+      pressure_model       = (prm.get("Pressure model") == "gas")
+                               ? PressureModel::gas
+                               : PressureModel::prescribed;
       pressure_expression  = prm.get("Pressure");
       pressure_table       = prm.get("Pressure table");
       equivalent_area      = prm.get_double("Equivalent area");
@@ -721,9 +721,9 @@ namespace SoftRobot
     InitialConditions::parse_parameters(ParameterHandler &prm)
     {
       prm.enter_subsection("Initial conditions");
-      initial_state           = (prm.get("Type") == "static equilibrium") ?
-                                  InitialState::static_equilibrium :
-                                  InitialState::expressions;
+      initial_state           = (prm.get("Type") == "static equilibrium")
+                                  ? InitialState::static_equilibrium
+                                  : InitialState::expressions;
       displacement_expression = prm.get("Displacement");
       velocity_expression     = prm.get("Velocity");
       load_steps              = prm.get_integer("Load steps");
@@ -884,9 +884,9 @@ namespace SoftRobot
       newton_max_iterations     = prm.get_integer("Max iterations");
       newton_absolute_tolerance = prm.get_double("Absolute tolerance");
       newton_relative_tolerance = prm.get_double("Relative tolerance");
-      tangent_update = (prm.get("Tangent update") == "every iteration") ?
-                         TangentUpdate::every_iteration :
-                         TangentUpdate::every_step;
+      tangent_update        = (prm.get("Tangent update") == "every iteration")
+                                ? TangentUpdate::every_iteration
+                                : TangentUpdate::every_step;
       acceleration_depth    = prm.get_integer("Acceleration depth");
       tangent_extrapolation = prm.get_bool("Tangent extrapolation");
       line_search           = prm.get_bool("Line search");
@@ -960,16 +960,16 @@ namespace SoftRobot
     {
       prm.enter_subsection("Linear solver");
       const std::string solver = prm.get("Solver");
-      linear_solver = (solver == "Direct") ? LinearSolverType::direct :
-                      (solver == "GMRES")  ? LinearSolverType::gmres :
-                                             LinearSolverType::cg;
-      direct_solver = (prm.get("Direct solver") == "MUMPS") ?
-                        DirectSolverType::mumps :
-                        DirectSolverType::klu;
+      linear_solver            = (solver == "Direct") ? LinearSolverType::direct
+                                 : (solver == "GMRES") ? LinearSolverType::gmres
+                                                       : LinearSolverType::cg;
+      direct_solver            = (prm.get("Direct solver") == "MUMPS")
+                                   ? DirectSolverType::mumps
+                                   : DirectSolverType::klu;
       linear_relative_tolerance = prm.get_double("Relative tolerance");
       linear_max_iterations     = prm.get_integer("Max iterations");
-      smoother_sweeps       = prm.get_integer("AMG smoother sweeps");
-      aggregation_threshold = prm.get_double("AMG aggregation threshold");
+      smoother_sweeps           = prm.get_integer("AMG smoother sweeps");
+      aggregation_threshold     = prm.get_double("AMG aggregation threshold");
       prm.leave_subsection();
     }
 
@@ -1061,17 +1061,17 @@ namespace SoftRobot
     Output::parse_parameters(ParameterHandler &prm)
     {
       prm.enter_subsection("Output");
-      write_vtu         = prm.get_bool("Write VTU");
-      write_hdf5        = prm.get_bool("Write HDF5");
-      existing_output   = (prm.get("Existing output") == "replace") ?
-                            ExistingOutput::replace :
-                            ExistingOutput::refuse;
-      output_interval   = prm.get_double("Output interval");
-      trajectory_file   = prm.get("Trajectory file");
-      progress_interval = prm.get_integer("Progress interval");
+      write_vtu           = prm.get_bool("Write VTU");
+      write_hdf5          = prm.get_bool("Write HDF5");
+      existing_output     = (prm.get("Existing output") == "replace")
+                              ? ExistingOutput::replace
+                              : ExistingOutput::refuse;
+      output_interval     = prm.get_double("Output interval");
+      trajectory_file     = prm.get("Trajectory file");
+      progress_interval   = prm.get_integer("Progress interval");
       checkpoint_interval = prm.get_integer("Checkpoint interval");
-      spectral_analysis = prm.get_bool("Spectral analysis");
-      spectral_skip     = prm.get_double("Spectral analysis skip");
+      spectral_analysis   = prm.get_bool("Spectral analysis");
+      spectral_skip       = prm.get_double("Spectral analysis skip");
       const auto words =
         Utilities::split_string_list(prm.get("Tip region"), ' ');
       AssertThrow(words.size() == 2 &&
@@ -1079,13 +1079,12 @@ namespace SoftRobot
                   ExcMessage("Output/Tip region must be 'boundary <id>' or "
                              "'material <id>', not '" +
                              prm.get("Tip region") + "'."));
-      tip_region_type = (words[0] == "boundary") ? TipRegionType::boundary :
-                                                   TipRegionType::material;
+      tip_region_type = (words[0] == "boundary") ? TipRegionType::boundary
+                                                 : TipRegionType::material;
       const int id    = Utilities::string_to_int(words[1]);
       AssertThrow(id >= 0 && id < 256,
                   ExcMessage("Output/Tip region: the id in '" +
-                             prm.get("Tip region") +
-                             "' must be in [0, 255]."));
+                             prm.get("Tip region") + "' must be in [0, 255]."));
       tip_region_id = id;
       prm.leave_subsection();
     }
@@ -1144,8 +1143,8 @@ namespace SoftRobot
         const auto equals = assignment.find('=');
         AssertThrow(equals != std::string::npos && equals > 0,
                     ExcMessage(where + "expected 'Subsection/Entry=value'."));
-        const std::vector<std::string> path = Utilities::split_string_list(
-          assignment.substr(0, equals), '/');
+        const std::vector<std::string> path =
+          Utilities::split_string_list(assignment.substr(0, equals), '/');
         const std::string value =
           Utilities::trim(assignment.substr(equals + 1));
         for (unsigned int i = 0; i + 1 < path.size(); ++i)
@@ -1245,9 +1244,9 @@ namespace SoftRobot
           error.print_info(reason);
           const std::string message = one_line(reason.str());
           AssertThrow(false,
-                      ExcMessage(message.rfind("In ", 0) == 0 ?
-                                   message :
-                                   where() + message));
+                      ExcMessage(message.rfind("In ", 0) == 0
+                                   ? message
+                                   : where() + message));
         }
       // File names in the parameter file (the mesh) are relative to the
       // directory of the parameter file, so that a scene runs from
@@ -1322,9 +1321,8 @@ namespace SoftRobot
                     ExcMessage(where + "Material " + std::to_string(id) +
                                "/Section must be 1 in 3D (it is the area or "
                                "thickness of the reduced 1D and 2D models)."));
-      AssertThrow(dimension == 3 ||
-                    volumetric_formulation ==
-                      VolumetricFormulation::displacement,
+      AssertThrow(dimension == 3 || volumetric_formulation ==
+                                      VolumetricFormulation::displacement,
                   ExcMessage(where +
                              "Finite element/Volumetric formulation must be "
                              "'displacement' in " +
@@ -1365,8 +1363,7 @@ namespace SoftRobot
       const bool        gas   = (pressure_model == PressureModel::gas);
       // The checkpoint does not hold the gas sealed at t = 0.
       AssertThrow(!(has_pressure() && gas && checkpoint_interval > 0),
-                  ExcMessage(this->where() +
-                             "Output/Checkpoint interval = " +
+                  ExcMessage(this->where() + "Output/Checkpoint interval = " +
                              std::to_string(checkpoint_interval) +
                              ": checkpoints are not available with "
                              "Pneumatics/Pressure model = gas; set it to 0."));
@@ -1374,8 +1371,8 @@ namespace SoftRobot
                   ExcMessage(where + "Pressure = '" + pressure_expression +
                              "' and Pressure table = '" + pressure_table +
                              "' are both given; give one of them."));
-      AssertThrow(!gas || (pressure_expression.empty() &&
-                           pressure_table.empty()),
+      AssertThrow(!gas ||
+                    (pressure_expression.empty() && pressure_table.empty()),
                   ExcMessage(where + "Pressure model = gas takes its "
                                      "pressure from the gas law: Pressure "
                                      "and Pressure table must be empty "
@@ -1404,14 +1401,14 @@ namespace SoftRobot
                              "models have no cavity whose volume the gas "
                              "could fill."));
       AssertThrow(!gas || ambient_pressure + initial_gas_pressure > 0.,
-                  ExcMessage(where + "Initial pressure = " +
-                             std::to_string(initial_gas_pressure) +
-                             " kPa is an absolute pressure of " +
-                             std::to_string(ambient_pressure +
-                                            initial_gas_pressure) +
-                             " kPa with the Ambient pressure: it must be "
-                             "positive (a gauge pressure above -" +
-                             std::to_string(ambient_pressure) + " kPa)."));
+                  ExcMessage(
+                    where + "Initial pressure = " +
+                    std::to_string(initial_gas_pressure) +
+                    " kPa is an absolute pressure of " +
+                    std::to_string(ambient_pressure + initial_gas_pressure) +
+                    " kPa with the Ambient pressure: it must be "
+                    "positive (a gauge pressure above -" +
+                    std::to_string(ambient_pressure) + " kPa)."));
       AssertThrow(pressure_table.empty() || std::ifstream(pressure_table),
                   ExcMessage(where + "Pressure table: cannot open '" +
                              pressure_table + "'."));
@@ -1438,24 +1435,24 @@ namespace SoftRobot
     std::string
     name_of(const NonlinearSolver::TangentUpdate update)
     {
-      return (update == NonlinearSolver::TangentUpdate::every_step) ?
-               "every step" :
-               "every iteration";
+      return (update == NonlinearSolver::TangentUpdate::every_step)
+               ? "every step"
+               : "every iteration";
     }
 
     std::string
     name_of(const Output::TipRegionType type)
     {
-      return (type == Output::TipRegionType::boundary) ? "boundary" :
-                                                         "material";
+      return (type == Output::TipRegionType::boundary) ? "boundary"
+                                                       : "material";
     }
 
     std::string
     name_of(const Silicone::ParameterSet parameter_set)
     {
-      return (parameter_set == Silicone::ParameterSet::calibrated) ?
-               "calibrated" :
-               "baseline";
+      return (parameter_set == Silicone::ParameterSet::calibrated)
+               ? "calibrated"
+               : "baseline";
     }
   } // namespace Parameters
 } // namespace SoftRobot

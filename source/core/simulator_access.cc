@@ -12,7 +12,8 @@ namespace SoftRobot
   template <int dim>
   SimulatorAccess<dim>::SimulatorAccess(SoftRobotDynamics<dim> &simulator)
     : simulator(simulator)
-  {}
+  {
+  }
 
   template <int dim>
   void
@@ -189,7 +190,7 @@ namespace SoftRobot
   SimulatorAccess<dim>::record_damping_state(
     const TrilinosWrappers::MPI::Vector &u)
   {
-    SoftRobotDynamics<dim> &s = simulator;
+    SoftRobotDynamics<dim>       &s = simulator;
     TrilinosWrappers::MPI::Vector internal(s.locally_owned_dofs,
                                            s.mpi_communicator);
     TrilinosWrappers::MPI::Vector damping(internal), rest(internal);

@@ -24,9 +24,8 @@
 #include <deal.II/lac/dynamic_sparsity_pattern.h>
 #include <deal.II/lac/sparsity_tools.h>
 #include <deal.II/numerics/vector_tools.h>
-#include <output/output_directory.h>
-
 #include <iomanip>
+#include <output/output_directory.h>
 
 namespace SoftRobot
 {
@@ -37,8 +36,8 @@ namespace SoftRobot
     HHTStepper
     make_stepper(const Parameters::TimeIntegration &p)
     {
-      return (p.beta < 0) ? HHTStepper(p.alpha) :
-                            HHTStepper(p.alpha, p.beta, p.gamma);
+      return (p.beta < 0) ? HHTStepper(p.alpha)
+                          : HHTStepper(p.alpha, p.beta, p.gamma);
     }
 
 
@@ -54,11 +53,13 @@ namespace SoftRobot
     {
       const IndexSet &owned = dof_handler.locally_owned_dofs();
       std::map<types::global_dof_index, Point<dim>> support_points;
-      DoFTools::map_dofs_to_support_points(mapping, dof_handler, support_points);
-      const unsigned int n_rotations = dim * (dim - 1) / 2;
+      DoFTools::map_dofs_to_support_points(mapping,
+                                           dof_handler,
+                                           support_points);
+      const unsigned int               n_rotations = dim * (dim - 1) / 2;
       std::vector<std::vector<double>> modes(
         dim + n_rotations, std::vector<double>(owned.n_elements(), 0.));
-      const FiniteElement<dim> &fe = dof_handler.get_fe();
+      const FiniteElement<dim>            &fe = dof_handler.get_fe();
       std::vector<types::global_dof_index> dof_indices(fe.n_dofs_per_cell());
       for (const auto &cell : dof_handler.active_cell_iterators())
         if (cell->is_locally_owned())
@@ -67,7 +68,8 @@ namespace SoftRobot
             for (unsigned int i = 0; i < dof_indices.size(); ++i)
               if (owned.is_element(dof_indices[i]))
                 {
-                  const unsigned int local = owned.index_within_set(dof_indices[i]);
+                  const unsigned int local =
+                    owned.index_within_set(dof_indices[i]);
                   const unsigned int c = fe.system_to_component_index(i).first;
                   const Point<dim>  &x = support_points[dof_indices[i]];
                   modes[c][local]      = 1.;
@@ -185,9 +187,9 @@ namespace SoftRobot
     AssertThrow(simplex_mesh ||
                   triangulation.all_reference_cells_are_hyper_cube(),
                 ExcMessage("Meshes that mix cell shapes are not supported."));
-    const unsigned int n_q = parameters.quadrature_points > 0 ?
-                               parameters.quadrature_points :
-                               (simplex_mesh ? p : p + 1);
+    const unsigned int n_q = parameters.quadrature_points > 0
+                               ? parameters.quadrature_points
+                               : (simplex_mesh ? p : p + 1);
     if (simplex_mesh)
       {
         fe      = std::make_unique<FESystem<dim>>(FE_SimplexP<dim>(p), dim);
@@ -239,13 +241,13 @@ namespace SoftRobot
         std::vector<bool> mask(dim, false);
         for (const char letter : letters)
           mask[letter - 'x'] = true;
-        VectorTools::interpolate_boundary_values(
-          *mapping,
-          dof_handler,
-          boundary_id,
-          Functions::ZeroFunction<dim>(dim),
-          constraints,
-          ComponentMask(mask));
+        VectorTools::interpolate_boundary_values(*mapping,
+                                                 dof_handler,
+                                                 boundary_id,
+                                                 Functions::ZeroFunction<dim>(
+                                                   dim),
+                                                 constraints,
+                                                 ComponentMask(mask));
       }
     constraints.close();
 
@@ -326,21 +328,21 @@ namespace SoftRobot
         for (State *state : {&current, &previous})
           {
             state->pressure_force.reinit(locally_owned_dofs, mpi_communicator);
-            state->volume_gradient.reinit(locally_owned_dofs,
-                                          mpi_communicator);
+            state->volume_gradient.reinit(locally_owned_dofs, mpi_communicator);
           }
         pcout << pneumatics->description() << std::endl;
       }
     if (parameters.direct_addresses)
-      assembler = DirectAddressAssembler<dim>::create(
-        cell_geometry,
-        constraints,
-        locally_owned_dofs,
-        locally_relevant_dofs,
-        system_matrix,
-        damping_matrices ? &damping_matrix : nullptr,
-        current.u,
-        mpi_communicator);
+      assembler =
+        DirectAddressAssembler<dim>::create(cell_geometry,
+                                            constraints,
+                                            locally_owned_dofs,
+                                            locally_relevant_dofs,
+                                            system_matrix,
+                                            damping_matrices ? &damping_matrix
+                                                             : nullptr,
+                                            current.u,
+                                            mpi_communicator);
     else
       assembler = std::make_unique<SystemAssembler<dim>>(cell_geometry,
                                                          constraints,
@@ -348,16 +350,15 @@ namespace SoftRobot
                                                          locally_relevant_dofs,
                                                          mpi_communicator);
     linear_solver.set_near_null_space(rigid_body_modes(*mapping, dof_handler));
-    tip_region.reinit(parameters,
-                      *mapping,
-                      dof_handler,
-                      *cell_quadrature,
-                      *face_quadrature,
-                      constraints,
-                      [this](const types::material_id id) {
-                        return inertia.density(id);
-                      },
-                      mpi_communicator);
+    tip_region.reinit(
+      parameters,
+      *mapping,
+      dof_handler,
+      *cell_quadrature,
+      *face_quadrature,
+      constraints,
+      [this](const types::material_id id) { return inertia.density(id); },
+      mpi_communicator);
     guard.reinit(
       parameters,
       *mapping,
@@ -546,15 +547,15 @@ namespace SoftRobot
 
 
   // The explicit instantiations of this file's member functions.
-#define SOFT_ROBOT_INSTANTIATE(dim)                                   \
-  template SoftRobotDynamics<dim>::SoftRobotDynamics(                 \
-    const Parameters::AllParameters &, const MPI_Comm);               \
-  template SoftRobotDynamics<dim>::~SoftRobotDynamics();              \
-  template void SoftRobotDynamics<dim>::make_grid();                  \
-  template void SoftRobotDynamics<dim>::setup_system();               \
-  template void SoftRobotDynamics<dim>::check_initial_state() const;  \
-  template void SoftRobotDynamics<dim>::check_state_is_finite();      \
-  template void SoftRobotDynamics<dim>::check_motion() const;         \
+#define SOFT_ROBOT_INSTANTIATE(dim)                                  \
+  template SoftRobotDynamics<dim>::SoftRobotDynamics(                \
+    const Parameters::AllParameters &, const MPI_Comm);              \
+  template SoftRobotDynamics<dim>::~SoftRobotDynamics();             \
+  template void SoftRobotDynamics<dim>::make_grid();                 \
+  template void SoftRobotDynamics<dim>::setup_system();              \
+  template void SoftRobotDynamics<dim>::check_initial_state() const; \
+  template void SoftRobotDynamics<dim>::check_state_is_finite();     \
+  template void SoftRobotDynamics<dim>::check_motion() const;        \
   template void SoftRobotDynamics<dim>::run();
   SOFT_ROBOT_FOR_EACH_DIMENSION(SOFT_ROBOT_INSTANTIATE)
 #undef SOFT_ROBOT_INSTANTIATE

@@ -139,10 +139,11 @@ namespace SoftRobot
     AssertThrow(!(parameters.has_pressure() &&
                   parameters.pressure_model ==
                     Parameters::Pneumatics::PressureModel::gas),
-                ExcMessage(parameters.where() +
-                           "Pneumatics/Pressure model = gas: the checkpoint "
-                           "does not hold the gas sealed at t = 0, so a run "
-                           "with a gas cavity cannot be continued (--restart)."));
+                ExcMessage(
+                  parameters.where() +
+                  "Pneumatics/Pressure model = gas: the checkpoint "
+                  "does not hold the gas sealed at t = 0, so a run "
+                  "with a gas cavity cannot be continued (--restart)."));
     const CheckpointData data =
       Checkpoint::read(parameters.restart_directory, mpi_communicator);
     Checkpoint::check_compatible(data,

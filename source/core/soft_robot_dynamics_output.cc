@@ -10,14 +10,13 @@
 
 #include <analysis/spectral_analysis.h>
 #include <analysis/spectral_report.h>
+#include <cmath>
 #include <core/config.h>
 #include <core/soft_robot_dynamics.h>
 #include <deal.II/base/multithread_info.h>
 #include <deal.II/base/utilities.h>
 #include <output/run_statistics.h>
 #include <output/safe_file.h>
-
-#include <cmath>
 #include <sstream>
 
 namespace SoftRobot
@@ -82,9 +81,9 @@ namespace SoftRobot
     materials << "materials:";
     for (const auto &[id, material] : parameters.by_id)
       {
-        materials << (id == parameters.by_id.begin()->first ? " " : "; ")
-                  << id << " " << material.name
-                  << " (mu = " << material.shear_modulus << " kPa";
+        materials << (id == parameters.by_id.begin()->first ? " " : "; ") << id
+                  << " " << material.name << " (mu = " << material.shear_modulus
+                  << " kPa";
         if (dim == 3)
           materials << ", kappa = " << material.bulk_modulus << " kPa";
         materials << ")";
@@ -110,10 +109,9 @@ namespace SoftRobot
   SoftRobotDynamics<dim>::write_trajectory_row()
   {
     const auto [u_tip, v_tip] = tip_region.motion(current.u, current.v);
-    const Tensor<1, 3> L      = angular_momentum();
-    std::vector<double> row   = {current.time,
-                               counters.steps == 0 ? 0. :
-                                                     current.time - previous.time};
+    const Tensor<1, 3>  L     = angular_momentum();
+    std::vector<double> row   = {
+        current.time, counters.steps == 0 ? 0. : current.time - previous.time};
     for (unsigned int d = 0; d < dim; ++d)
       row.push_back(u_tip[d]);
     for (unsigned int d = 0; d < dim; ++d)
@@ -271,8 +269,8 @@ namespace SoftRobot
           material[index]  = cell->material_id();
           if (pneumatics && pneumatics->surface().loads_cell(cell_number))
             cavity_pressure[index] = current.pressure;
-          rank[index]      = cell->subdomain_id();
-          unsigned int c   = 0;
+          rank[index]    = cell->subdomain_id();
+          unsigned int c = 0;
           for (unsigned int i = 0; i < dim; ++i)
             for (unsigned int j = i; j < dim; ++j)
               stress[c++][index] = mean_sigma[i][j];
@@ -280,7 +278,9 @@ namespace SoftRobot
         }
 
     CellData cell_data;
-    cell_data.add((dim == 1) ? "stretch" : (dim == 2) ? "area_ratio" : "J",
+    cell_data.add((dim == 1)   ? "stretch"
+                  : (dim == 2) ? "area_ratio"
+                               : "J",
                   volume_ratio);
     cell_data.add("von_Mises_stress", von_mises);
     cell_data.add("material_id", material);
@@ -337,7 +337,7 @@ namespace SoftRobot
     if (Utilities::MPI::this_mpi_process(mpi_communicator) != 0)
       return;
     // (Process 0 alone; finish_run() makes a failure known to all.)
-    const std::string directory = parameters.output_directory + "/";
+    const std::string            directory = parameters.output_directory + "/";
     Analysis::TrajectoryAnalysis analysis;
     try
       {
@@ -406,10 +406,10 @@ namespace SoftRobot
   // The part of the statistics that process 0 fills in, and the file.
   template <int dim>
   void
-  SoftRobotDynamics<dim>::fill_and_write_statistics(RunStatistics &statistics,
-                                                    const double wall_time) const
+  SoftRobotDynamics<dim>::fill_and_write_statistics(
+    RunStatistics &statistics,
+    const double   wall_time) const
   {
-
     statistics.dimension       = dim;
     statistics.cells           = triangulation.n_global_active_cells();
     statistics.dofs            = dof_handler.n_dofs();
@@ -473,20 +473,20 @@ namespace SoftRobot
 
   // The explicit instantiations of this file's member functions.
 #define SOFT_ROBOT_INSTANTIATE(dim)                                        \
-  template Tensor<1, 3> SoftRobotDynamics<dim>::angular_momentum() const; \
-  template void SoftRobotDynamics<dim>::open_trajectory();                \
-  template void SoftRobotDynamics<dim>::write_trajectory_row();           \
-  template void SoftRobotDynamics<dim>::output_results();                 \
-  template std::pair<std::unique_ptr<DataOut<dim>>, CellData>             \
-  SoftRobotDynamics<dim>::field_data() const;                              \
+  template Tensor<1, 3> SoftRobotDynamics<dim>::angular_momentum() const;  \
+  template void         SoftRobotDynamics<dim>::open_trajectory();         \
+  template void         SoftRobotDynamics<dim>::write_trajectory_row();    \
+  template void         SoftRobotDynamics<dim>::output_results();          \
+  template std::pair<std::unique_ptr<DataOut<dim>>, CellData>              \
+                SoftRobotDynamics<dim>::field_data() const;                \
   template void SoftRobotDynamics<dim>::write_fields();                    \
   template void SoftRobotDynamics<dim>::write_final_fields();              \
   template std::vector<std::pair<std::string, double>>                     \
-  SoftRobotDynamics<dim>::state_values() const;                            \
-  template void SoftRobotDynamics<dim>::analyse_trajectory() const;       \
+                SoftRobotDynamics<dim>::state_values() const;              \
+  template void SoftRobotDynamics<dim>::analyse_trajectory() const;        \
   template void SoftRobotDynamics<dim>::write_run_statistics(const double) \
     const;                                                                 \
-  template void SoftRobotDynamics<dim>::fill_and_write_statistics(        \
+  template void SoftRobotDynamics<dim>::fill_and_write_statistics(         \
     RunStatistics &, const double) const;                                  \
   template void SoftRobotDynamics<dim>::finish_run(const double);
   SOFT_ROBOT_FOR_EACH_DIMENSION(SOFT_ROBOT_INSTANTIATE)

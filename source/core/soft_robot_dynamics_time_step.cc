@@ -13,7 +13,6 @@
 #include <deal.II/lac/solver_control.h>
 #include <deal.II/lac/trilinos_precondition.h>
 #include <deal.II/numerics/vector_tools.h>
-
 #include <sstream>
 
 namespace SoftRobot
@@ -34,8 +33,8 @@ namespace SoftRobot
     TrilinosWrappers::MPI::Vector       *damping_force)
   {
     TimerOutput::Scope timer_section(computing_timer,
-                                     request.matrix ? "Assemble system" :
-                                                      "Assemble residual");
+                                     request.matrix ? "Assemble system"
+                                                    : "Assemble residual");
     Assert(damping_force != nullptr || !request.second_force,
            ExcInternalError());
     Assert(!request.second_matrix || solid->has_damping() || drag,
@@ -174,11 +173,11 @@ namespace SoftRobot
       }
     if (body_force)
       {
-        TimerOutput::Scope timer_section(computing_timer,
+        TimerOutput::Scope               timer_section(computing_timer,
                                          "Assemble body force");
-        TrilinosWrappers::MPI::Vector body_force_vector(locally_owned_dofs,
+        TrilinosWrappers::MPI::Vector    body_force_vector(locally_owned_dofs,
                                                         mpi_communicator);
-        FEValues<dim>                 fe_values(*mapping,
+        FEValues<dim>                    fe_values(*mapping,
                                 *fe,
                                 *mass_quadrature,
                                 update_values | update_quadrature_points |
@@ -198,7 +197,8 @@ namespace SoftRobot
                 parameters.by_id.at(cell->material_id()).section;
               for (const unsigned int q : fe_values.quadrature_point_indices())
                 {
-                  body_force->vector_value(fe_values.quadrature_point(q), value);
+                  body_force->vector_value(fe_values.quadrature_point(q),
+                                           value);
                   Tensor<1, dim> b;
                   for (unsigned int d = 0; d < dim; ++d)
                     b[d] = value[d];
@@ -314,17 +314,17 @@ namespace SoftRobot
     // closed cavity's load has the potential $-pV$, an open surface's none.
     const double pressure =
       pneumatics ? pneumatics->initial_pressure(time) : 0.;
-    const bool   has_gravity  = inertia.gravity_force.l2_norm() > 0.;
-    const bool   has_traction = traction_force.l2_norm() > 0. || pressure != 0.;
-    double       pressure_factor = 0.;
+    const bool has_gravity  = inertia.gravity_force.l2_norm() > 0.;
+    const bool has_traction = traction_force.l2_norm() > 0. || pressure != 0.;
+    double     pressure_factor = 0.;
 
     TrilinosWrappers::MPI::Vector external(traction_force);
     TrilinosWrappers::MPI::Vector internal(traction_force);
     TrilinosWrappers::MPI::Vector gradient(traction_force);
-    const NewtonSolver::Problem   problem = newton_problem(
-      [&](const TrilinosWrappers::MPI::Vector &u,
-          const bool                           with_matrix,
-          TrilinosWrappers::MPI::Vector       &r) {
+    const NewtonSolver::Problem   problem =
+      newton_problem([&](const TrilinosWrappers::MPI::Vector &u,
+                         const bool                           with_matrix,
+                         TrilinosWrappers::MPI::Vector       &r) {
         double pressure_potential = 0.;
         if (pneumatics)
           {
@@ -333,11 +333,11 @@ namespace SoftRobot
                                                pressure_factor * pressure,
                                                gradient);
             pressure_potential =
-              pneumatics->has_volume() ?
-                -evaluation.pressure *
-                  (evaluation.volume - parameters.dead_volume) *
-                  parameters.model_fraction :
-                std::numeric_limits<double>::quiet_NaN();
+              pneumatics->has_volume()
+                ? -evaluation.pressure *
+                    (evaluation.volume - parameters.dead_volume) *
+                    parameters.model_fraction
+                : std::numeric_limits<double>::quiet_NaN();
           }
         AssemblyResult assembly =
           assemble_internal_force(u, with_matrix, internal);
@@ -367,12 +367,12 @@ namespace SoftRobot
         external               = 0.;
         external.add(std::min(target, 1.), inertia.gravity_force);
         external.add(std::max(target - 1., 0.), traction_force);
-        pressure_factor = std::max(target - 1., 0.);
+        pressure_factor                           = std::max(target - 1., 0.);
         const TrilinosWrappers::MPI::Vector saved = current.u;
         try
           {
-            const NewtonSolver::Result result =
-              newton_solver.solve(current.u, problem, external.l2_norm(), false);
+            const NewtonSolver::Result result = newton_solver.solve(
+              current.u, problem, external.l2_norm(), false);
             counters.newton_iterations += result.iterations;
             counters.last_residual = result.residual;
             load                   = target;
@@ -384,9 +384,9 @@ namespace SoftRobot
             current.u = saved;
             increment *= 0.5;
             if (increment < 1e-4)
-              throw RunAborted("The static equilibrium at t = " +
-                               std::to_string(time) +
-                               " could not be found: " + failure.what());
+              throw RunAborted(
+                "The static equilibrium at t = " + std::to_string(time) +
+                " could not be found: " + failure.what());
           }
       }
     pcout << "Static equilibrium found (gravity, then tractions, in "
@@ -441,7 +441,10 @@ namespace SoftRobot
                              dof_handler,
                              initial_displacement,
                              current.u);
-    VectorTools::interpolate(*mapping, dof_handler, initial_velocity, current.v);
+    VectorTools::interpolate(*mapping,
+                             dof_handler,
+                             initial_velocity,
+                             current.v);
     constraints.set_zero(current.u);
     constraints.set_zero(current.v);
 
@@ -455,9 +458,9 @@ namespace SoftRobot
     assemble_external_force(0., 1., current.external_force);
     compute_initial_acceleration();
 
-    energy.kinetic             = 0.5 * inertia.mass.matrix_norm_square(current.v);
-    energy.gravity_potential   = -(inertia.gravity_force * current.u);
-    energy.traction_work       = 0.;
+    energy.kinetic           = 0.5 * inertia.mass.matrix_norm_square(current.v);
+    energy.gravity_potential = -(inertia.gravity_force * current.u);
+    energy.traction_work     = 0.;
     energy.damping_dissipation = 0.;
     energy.pressure_work       = 0.;
     // The forces of the equation at t = 0, the first terms of the work and
@@ -541,7 +544,10 @@ namespace SoftRobot
       std::max(residual.l2_norm(), current.internal_force.l2_norm());
     residual.add(w, current.internal_force, w, current.damping_force);
     residual.add(-w, current.external_force);
-    residual.add(1. - w, previous.internal_force, 1. - w, previous.damping_force);
+    residual.add(1. - w,
+                 previous.internal_force,
+                 1. - w,
+                 previous.damping_force);
     residual.add(w - 1., previous.external_force);
     if (pneumatics)
       residual.add(-w, current.pressure_force, w - 1., previous.pressure_force);
@@ -607,7 +613,8 @@ namespace SoftRobot
             std::swap(history.older, history.newer);
             std::swap(history.older_time, history.newer_time);
             if (!history.newer)
-              history.newer = std::make_unique<TrilinosWrappers::SparseMatrix>();
+              history.newer =
+                std::make_unique<TrilinosWrappers::SparseMatrix>();
             history.newer->copy_from(system_matrix);
             history.newer_time = previous.time;
           }
@@ -651,8 +658,9 @@ namespace SoftRobot
     stepper.predict_displacement(
       previous.u, previous.v, previous.a, dt, current.u);
 
-    const bool modified = (parameters.tangent_update ==
-                           Parameters::NonlinearSolver::TangentUpdate::every_step);
+    const bool modified =
+      (parameters.tangent_update ==
+       Parameters::NonlinearSolver::TangentUpdate::every_step);
     if (modified)
       prepare_step_tangent(dt);
 
@@ -664,8 +672,8 @@ namespace SoftRobot
         return evaluate_residual(u, dt, with_matrix, r);
       }),
       pneumatics ? std::max(current.external_force.l2_norm(),
-                            previous.pressure_force.l2_norm()) :
-                   current.external_force.l2_norm(),
+                            previous.pressure_force.l2_norm())
+                 : current.external_force.l2_norm(),
       modified);
     counters.last_newton_iterations = result.iterations;
     counters.newton_iterations += result.iterations;
@@ -726,8 +734,8 @@ namespace SoftRobot
       {
         TrilinosWrappers::MPI::Vector pressure_force(current.pressure_force);
         pressure_force.sadd(w, 1. - w, previous.pressure_force);
-        energy.pressure_work += 0.5 * (increment * pressure_force +
-                                       increment * hht_pressure_force);
+        energy.pressure_work +=
+          0.5 * (increment * pressure_force + increment * hht_pressure_force);
         hht_pressure_force = pressure_force;
       }
 
@@ -778,9 +786,8 @@ namespace SoftRobot
           }
       }
     ++counters.steps;
-    if (damped ||
-        parameters.tangent_update ==
-          Parameters::NonlinearSolver::TangentUpdate::every_step)
+    if (damped || parameters.tangent_update ==
+                    Parameters::NonlinearSolver::TangentUpdate::every_step)
       assemble_state();
     step_controller.record_success(current.time);
     return true;
@@ -789,46 +796,46 @@ namespace SoftRobot
 
 
   // The explicit instantiations of this file's member functions.
-#define SOFT_ROBOT_INSTANTIATE(dim)                                           \
-  template AssemblyResult SoftRobotDynamics<dim>::assemble_forces(           \
-    const TrilinosWrappers::MPI::Vector &,                                    \
-    const TrilinosWrappers::MPI::Vector *,                                    \
-    const AssemblyRequest &,                                                  \
-    TrilinosWrappers::MPI::Vector &,                                          \
-    TrilinosWrappers::MPI::Vector *);                                         \
-  template AssemblyResult SoftRobotDynamics<dim>::assemble_internal_force(   \
-    const TrilinosWrappers::MPI::Vector &,                                    \
-    const bool,                                                               \
-    TrilinosWrappers::MPI::Vector &);                                         \
-  template AssemblyResult SoftRobotDynamics<dim>::assemble_state();          \
-  template void SoftRobotDynamics<dim>::add_global_damping_forces(            \
-    const TrilinosWrappers::MPI::Vector &, TrilinosWrappers::MPI::Vector &)   \
-    const;                                                                    \
-  template void SoftRobotDynamics<dim>::add_global_damping_matrices(          \
-    const double, TrilinosWrappers::SparseMatrix &) const;                    \
-  template void SoftRobotDynamics<dim>::assemble_external_force(              \
-    const double, const double, TrilinosWrappers::MPI::Vector &) const;       \
-  template void SoftRobotDynamics<dim>::evaluate_pneumatics(                  \
-    const TrilinosWrappers::MPI::Vector &, const double, State &);            \
-  template void SoftRobotDynamics<dim>::prepare_linear_solver();              \
-  template NewtonSolver::Problem SoftRobotDynamics<dim>::newton_problem(     \
-    const std::function<AssemblyResult(const TrilinosWrappers::MPI::Vector &, \
-                                       const bool,                            \
-                                       TrilinosWrappers::MPI::Vector &)> &);  \
-  template void SoftRobotDynamics<dim>::solve_static_equilibrium(             \
-    const double);                                                            \
-  template void SoftRobotDynamics<dim>::compute_initial_acceleration();       \
-  template void SoftRobotDynamics<dim>::initialize_state();                   \
-  template AssemblyResult SoftRobotDynamics<dim>::evaluate_residual(         \
-    const TrilinosWrappers::MPI::Vector &,                                    \
-    const double,                                                             \
-    const bool,                                                               \
-    TrilinosWrappers::MPI::Vector &);                                         \
-  template void SoftRobotDynamics<dim>::prepare_step_tangent(const double);   \
-  template void SoftRobotDynamics<dim>::solve_nonlinear_timestep(             \
-    const double);                                                            \
-  template void SoftRobotDynamics<dim>::update_energies(                      \
-    const AssemblyResult &);                                                  \
+#define SOFT_ROBOT_INSTANTIATE(dim)                                                   \
+  template AssemblyResult SoftRobotDynamics<dim>::assemble_forces(                    \
+    const TrilinosWrappers::MPI::Vector &,                                            \
+    const TrilinosWrappers::MPI::Vector *,                                            \
+    const AssemblyRequest &,                                                          \
+    TrilinosWrappers::MPI::Vector &,                                                  \
+    TrilinosWrappers::MPI::Vector *);                                                 \
+  template AssemblyResult SoftRobotDynamics<dim>::assemble_internal_force(            \
+    const TrilinosWrappers::MPI::Vector &,                                            \
+    const bool,                                                                       \
+    TrilinosWrappers::MPI::Vector &);                                                 \
+  template AssemblyResult SoftRobotDynamics<dim>::assemble_state();                   \
+  template void           SoftRobotDynamics<dim>::add_global_damping_forces(          \
+    const TrilinosWrappers::MPI::Vector &, TrilinosWrappers::MPI::Vector &) \
+    const;                                                                            \
+  template void SoftRobotDynamics<dim>::add_global_damping_matrices(                  \
+    const double, TrilinosWrappers::SparseMatrix &) const;                            \
+  template void SoftRobotDynamics<dim>::assemble_external_force(                      \
+    const double, const double, TrilinosWrappers::MPI::Vector &) const;               \
+  template void SoftRobotDynamics<dim>::evaluate_pneumatics(                          \
+    const TrilinosWrappers::MPI::Vector &, const double, State &);                    \
+  template void SoftRobotDynamics<dim>::prepare_linear_solver();                      \
+  template NewtonSolver::Problem SoftRobotDynamics<dim>::newton_problem(              \
+    const std::function<AssemblyResult(const TrilinosWrappers::MPI::Vector &,         \
+                                       const bool,                                    \
+                                       TrilinosWrappers::MPI::Vector &)> &);          \
+  template void SoftRobotDynamics<dim>::solve_static_equilibrium(                     \
+    const double);                                                                    \
+  template void SoftRobotDynamics<dim>::compute_initial_acceleration();               \
+  template void SoftRobotDynamics<dim>::initialize_state();                           \
+  template AssemblyResult SoftRobotDynamics<dim>::evaluate_residual(                  \
+    const TrilinosWrappers::MPI::Vector &,                                            \
+    const double,                                                                     \
+    const bool,                                                                       \
+    TrilinosWrappers::MPI::Vector &);                                                 \
+  template void SoftRobotDynamics<dim>::prepare_step_tangent(const double);           \
+  template void SoftRobotDynamics<dim>::solve_nonlinear_timestep(                     \
+    const double);                                                                    \
+  template void SoftRobotDynamics<dim>::update_energies(                              \
+    const AssemblyResult &);                                                          \
   template bool SoftRobotDynamics<dim>::advance_one_step();
   SOFT_ROBOT_FOR_EACH_DIMENSION(SOFT_ROBOT_INSTANTIATE)
 #undef SOFT_ROBOT_INSTANTIATE

@@ -1,10 +1,10 @@
 // SPDX-License-Identifier: LGPL-2.1-or-later
 
-#include <deal.II/differentiation/ad.h>
 #include <Sacado.hpp>
-#include <material/neo_hookean_energy.h>
 #include <array>
 #include <cmath>
+#include <deal.II/differentiation/ad.h>
+#include <material/neo_hookean_energy.h>
 
 namespace SoftRobot
 {
@@ -102,7 +102,7 @@ namespace SoftRobot
         E, [](const unsigned int a, const double component) {
           return ADNumber(n, a, Inner(n, a, component));
         }));
-      response.energy = value.val().val();
+      response.energy      = value.val().val();
       for (unsigned int a = 0; a < n; ++a)
         {
           const TableIndices<2> ij =
@@ -134,11 +134,11 @@ namespace SoftRobot
         E, [](const unsigned int a, const double component) {
           return ADNumber(n, a, component);
         }));
-      response.energy = value.val();
+      response.energy      = value.val();
       for (unsigned int a = 0; a < n; ++a)
-        response.second_piola[SymmetricTensor<2, dim>::
-                                unrolled_to_component_indices(a)] =
-          symmetric_weight<dim>(a) * value.dx(a);
+        response
+          .second_piola[SymmetricTensor<2, dim>::unrolled_to_component_indices(
+            a)] = symmetric_weight<dim>(a) * value.dx(a);
     }
   } // namespace
 
@@ -197,9 +197,9 @@ namespace SoftRobot
         {
           const internal::StrainInvariants<Number> invariants =
             internal::strain_invariants(E_ad);
-          const Number root = sqrt(1. + invariants.d);
+          const Number root          = sqrt(1. + invariants.d);
           const Number volume_change = invariants.d / (1. + root);
-          Number result = mu * internal::isochoric_energy_3d(invariants);
+          Number       result = mu * internal::isochoric_energy_3d(invariants);
           result += pressure * volume_change;
           return result;
         }
@@ -219,8 +219,8 @@ namespace SoftRobot
   double
   NeoHookeanEnergy<dim>::volumetric_energy(const double t) const
   {
-    return (dim == 3) ? 0.25 * kappa * internal::d_minus_log1p(t * (2. + t)) :
-                        0.;
+    return (dim == 3) ? 0.25 * kappa * internal::d_minus_log1p(t * (2. + t))
+                      : 0.;
   }
 
 
@@ -409,7 +409,7 @@ namespace SoftRobot
     // (a few dozen operations, against a few hundred per Jacobi sweep)
     // tells: it succeeds exactly when all eigenvalues are positive.
     {
-      double L[n][n] = {};
+      double L[n][n]           = {};
       bool   positive_definite = true;
       for (unsigned int j = 0; j < n && positive_definite; ++j)
         {
@@ -455,20 +455,20 @@ namespace SoftRobot
                 for (unsigned int k = 0; k < n; ++k)
                   {
                     const double mkp = M[k][p], mkq = M[k][q];
-                    M[k][p]          = c * mkp - s * mkq;
-                    M[k][q]          = s * mkp + c * mkq;
+                    M[k][p] = c * mkp - s * mkq;
+                    M[k][q] = s * mkp + c * mkq;
                   }
                 for (unsigned int k = 0; k < n; ++k)
                   {
                     const double mpk = M[p][k], mqk = M[q][k];
-                    M[p][k]          = c * mpk - s * mqk;
-                    M[q][k]          = s * mpk + c * mqk;
+                    M[p][k] = c * mpk - s * mqk;
+                    M[q][k] = s * mpk + c * mqk;
                   }
                 for (unsigned int k = 0; k < n; ++k)
                   {
                     const double vkp = V[k][p], vkq = V[k][q];
-                    V[k][p]          = c * vkp - s * vkq;
-                    V[k][q]          = s * vkp + c * vkq;
+                    V[k][p] = c * vkp - s * vkq;
+                    V[k][q] = s * vkp + c * vkq;
                   }
               }
       }
@@ -491,14 +491,14 @@ namespace SoftRobot
 
 
   // The explicit instantiations for the three dimensions, in one place.
-#define SOFT_ROBOT_INSTANTIATE(dim)                 \
-  template class NeoHookeanEnergy<dim>;             \
-  template Tensor<4, dim> first_piola_tangent<dim>( \
-    const Tensor<2, dim> &,                         \
-    const SymmetricTensor<2, dim> &,                \
-    const SymmetricTensor<4, dim> &);               \
-  template SymmetricTensor<4, dim>                  \
-  positive_semidefinite_part<dim>(const SymmetricTensor<4, dim> &);
+#define SOFT_ROBOT_INSTANTIATE(dim)                                 \
+  template class NeoHookeanEnergy<dim>;                             \
+  template Tensor<4, dim> first_piola_tangent<dim>(                 \
+    const Tensor<2, dim> &,                                         \
+    const SymmetricTensor<2, dim> &,                                \
+    const SymmetricTensor<4, dim> &);                               \
+  template SymmetricTensor<4, dim> positive_semidefinite_part<dim>( \
+    const SymmetricTensor<4, dim> &);
 
   SOFT_ROBOT_INSTANTIATE(1)
   SOFT_ROBOT_INSTANTIATE(2)

@@ -53,7 +53,7 @@ namespace SoftRobot
               files.push_back(name);
             continue;
           }
-        const bool        temporary =
+        const bool temporary =
           name.size() > 4 && name.substr(name.size() - 4) == ".tmp";
         if (!temporary &&
             (name == trajectory_file || is_reserved_output_name(name)))

@@ -4,9 +4,9 @@
 //
 // See include/physics/aerodynamic_drag.h for the formulas.
 
-#include <deal.II/differentiation/ad.h>
 #include <Sacado.hpp>
 #include <core/config.h>
+#include <deal.II/differentiation/ad.h>
 #include <physics/aerodynamic_drag.h>
 
 
@@ -71,7 +71,8 @@ namespace SoftRobot
     , boundary_ids(parameters.drag_boundary_ids)
     , coefficient(0.5 * parameters.air_density * parameters.drag_coefficient)
     , symmetric_tangent(symmetric_tangent)
-  {}
+  {
+  }
 
 
 
@@ -97,8 +98,9 @@ namespace SoftRobot
           F_ad[a][b] = ADNumber(n_variables, a * dim + b, F[a][b]);
         v_ad[a] = ADNumber(n_variables, dim * dim + a, v[a]);
       }
-    const Tensor<1, dim, ADNumber> t = drag_traction(F_ad, v_ad, N, coefficient);
-    Tensor<1, dim>                 value;
+    const Tensor<1, dim, ADNumber> t =
+      drag_traction(F_ad, v_ad, N, coefficient);
+    Tensor<1, dim> value;
     for (unsigned int c = 0; c < dim; ++c)
       {
         value[c] = t[c].val();
@@ -123,7 +125,8 @@ namespace SoftRobot
   // matrix its derivatives.
   template <int dim>
   void
-  AerodynamicDrag<dim>::add_cell_contribution(CellContribution<dim> &local) const
+  AerodynamicDrag<dim>::add_cell_contribution(
+    CellContribution<dim> &local) const
   {
     if (boundary_ids.empty() ||
         first_face[local.cell] == first_face[local.cell + 1])
@@ -155,13 +158,12 @@ namespace SoftRobot
           Tensor<3, dim>       d_dF;
           Tensor<2, dim>       d_dv;
           const bool           derivatives = with_matrix || with_damping;
-          const Tensor<1, dim> t =
-            traction(F,
-                     v,
-                     normals[point],
-                     derivatives ? &d_dF : nullptr,
-                     derivatives ? &d_dv : nullptr);
-          const double w = weights[point];
+          const Tensor<1, dim> t           = traction(F,
+                                            v,
+                                            normals[point],
+                                            derivatives ? &d_dF : nullptr,
+                                            derivatives ? &d_dv : nullptr);
+          const double         w           = weights[point];
           for (unsigned int i = 0; i < n; ++i)
             local.second_force(i) += phi[i] * t[components[i]] * w;
           if (!derivatives)

@@ -7,7 +7,6 @@
 #include <core/config.h>
 #include <deal.II/fe/fe_values.h>
 #include <physics/boundary_faces.h>
-
 #include <set>
 
 namespace SoftRobot
@@ -15,12 +14,12 @@ namespace SoftRobot
   // @sect4{BoundaryFaces::BoundaryFaces}
   template <int dim>
   BoundaryFaces<dim>::BoundaryFaces(
-    const Parameters::AllParameters        &parameters,
-    const CellGeometry<dim>                &geometry,
-    const Mapping<dim>                     &mapping,
-    const DoFHandler<dim>                  &dof_handler,
-    const Quadrature<dim - 1>              &quadrature,
-    const std::vector<unsigned int>        &boundary_ids)
+    const Parameters::AllParameters &parameters,
+    const CellGeometry<dim>         &geometry,
+    const Mapping<dim>              &mapping,
+    const DoFHandler<dim>           &dof_handler,
+    const Quadrature<dim - 1>       &quadrature,
+    const std::vector<unsigned int> &boundary_ids)
   {
     const FiniteElement<dim> &fe = dof_handler.get_fe();
     dofs_per_cell                = fe.n_dofs_per_cell();
@@ -34,14 +33,14 @@ namespace SoftRobot
     first_face.assign(1, 0);
     const std::set<types::boundary_id> ids(boundary_ids.begin(),
                                            boundary_ids.end());
-    FEFaceValues<dim> fe_face_values(mapping,
+    FEFaceValues<dim>                  fe_face_values(mapping,
                                      fe,
                                      quadrature,
                                      update_values | update_gradients |
                                        update_quadrature_points |
                                        update_normal_vectors |
                                        update_JxW_values);
-    unsigned int n_faces = 0;
+    unsigned int                       n_faces = 0;
     for (const auto &cell : dof_handler.active_cell_iterators())
       if (cell->is_locally_owned())
         {

@@ -26,7 +26,7 @@ namespace SoftRobot
     for (unsigned int i = 0; i < dofs_per_cell; ++i)
       components.push_back(fe.system_to_component_index(i).first);
 
-    FEValues<dim> fe_values(mapping,
+    FEValues<dim>                        fe_values(mapping,
                             fe,
                             quadrature,
                             update_gradients | update_JxW_values);

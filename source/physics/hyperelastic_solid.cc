@@ -86,7 +86,7 @@ namespace SoftRobot
   // feels, and $U''(\Theta)/V_e$ for the tangent.
   template <int dim>
   typename HyperelasticSolid<dim>::CellPressure
-  HyperelasticSolid<dim>::cell_pressure(const unsigned int cell,
+  HyperelasticSolid<dim>::cell_pressure(const unsigned int                 cell,
                                         const std::vector<Tensor<2, dim>> &H,
                                         CellContribution<dim> &local) const
   {
@@ -138,13 +138,13 @@ namespace SoftRobot
     MaterialResponse<dim> &response,
     CellContribution<dim> &local) const
   {
-    const unsigned int               cell     = local.cell;
-    const unsigned int               n        = geometry.dofs_per_cell;
-    const std::vector<unsigned int> &comp     = geometry.components;
-    const Tensor<1, dim>            *grad_phi = geometry.gradients(cell, q);
-    const double                     JxW      = geometry.weight(cell, q);
-    const NeoHookeanEnergy<dim>     &law      = *cell_law[cell];
-    const bool                       with_matrix = local.request.matrix;
+    const unsigned int               cell         = local.cell;
+    const unsigned int               n            = geometry.dofs_per_cell;
+    const std::vector<unsigned int> &comp         = geometry.components;
+    const Tensor<1, dim>            *grad_phi     = geometry.gradients(cell, q);
+    const double                     JxW          = geometry.weight(cell, q);
+    const NeoHookeanEnergy<dim>     &law          = *cell_law[cell];
+    const bool                       with_matrix  = local.request.matrix;
     std::vector<SymmetricTensor<2, dim>> &delta_E = local.workspace.delta_E;
 
     Tensor<2, dim> F = H;
@@ -184,11 +184,12 @@ namespace SoftRobot
     if (viscous_cell(local))
       {
         typename KelvinVoigtDamping<dim>::PointKinematics point;
-        point.q                = q;
-        point.F                = &F;
-        point.L                = &local.workspace.velocity_gradients[q];
-        point.delta_E          = with_matrix ? &delta_E : nullptr;
-        point.material_tangent = with_matrix ? &response.material_tangent : nullptr;
+        point.q       = q;
+        point.F       = &F;
+        point.L       = &local.workspace.velocity_gradients[q];
+        point.delta_E = with_matrix ? &delta_E : nullptr;
+        point.material_tangent =
+          with_matrix ? &response.material_tangent : nullptr;
         viscous->add_point_contribution(point, local);
       }
     if (!with_matrix)
@@ -243,8 +244,8 @@ namespace SoftRobot
       displacement_gradients(cell,
                              local.input_values[1],
                              local.workspace.velocity_gradients);
-    const bool rate_gradient = mean_dilatation && viscous_cell(local) &&
-                               local.request.matrix;
+    const bool rate_gradient =
+      mean_dilatation && viscous_cell(local) && local.request.matrix;
     local.workspace.rate_gradient.reinit(rate_gradient ? n : 0);
 
     const CellPressure    pressure = cell_pressure(cell, H, local);
@@ -260,11 +261,10 @@ namespace SoftRobot
       return;
     if (mean_dilatation && !local.inverted)
       {
-        const Vector<double> &g      = local.workspace.volume_gradient;
-        const double          factor = pressure.volumetric_stiffness /
-                                       pressure.volume;
-        const double          zeta   = cell_zeta[cell];
-        const bool damped =
+        const Vector<double> &g = local.workspace.volume_gradient;
+        const double factor = pressure.volumetric_stiffness / pressure.volume;
+        const double zeta   = cell_zeta[cell];
+        const bool   damped =
           !viscous && local.request.second_matrix && zeta > 0.;
         for (unsigned int i = 0; i < n; ++i)
           for (unsigned int j = 0; j <= i; ++j)

@@ -24,7 +24,7 @@ namespace SoftRobot
                                   const MPI_Comm mpi_communicator)
   {
     std::map<types::material_id, double> region_volume;
-    FEValues<dim> fe_values(mapping,
+    FEValues<dim>                        fe_values(mapping,
                             dof_handler.get_fe(),
                             quadrature,
                             update_JxW_values);
@@ -83,13 +83,13 @@ namespace SoftRobot
       parameters, mapping, dof_handler, volume_quadrature, mpi_communicator);
 
     const FiniteElement<dim> &fe = dof_handler.get_fe();
-    FEValues<dim>      fe_values(mapping,
+    FEValues<dim>             fe_values(mapping,
                             fe,
                             quadrature,
                             update_values | update_JxW_values);
-    const unsigned int dofs_per_cell = fe.n_dofs_per_cell();
-    FullMatrix<double> cell_matrix(dofs_per_cell, dofs_per_cell);
-    Vector<double>     cell_gravity(dofs_per_cell);
+    const unsigned int        dofs_per_cell = fe.n_dofs_per_cell();
+    FullMatrix<double>        cell_matrix(dofs_per_cell, dofs_per_cell);
+    Vector<double>            cell_gravity(dofs_per_cell);
     std::vector<types::global_dof_index> dof_indices(dofs_per_cell);
     const FEValuesExtractors::Vector     displacements(0);
     Tensor<1, dim>                       gravity;
@@ -97,7 +97,7 @@ namespace SoftRobot
       gravity[d] = parameters.gravity[d];
 
     gravity_force.reinit(dof_handler.locally_owned_dofs(), mpi_communicator);
-    mass                  = 0.;
+    mass                   = 0.;
     const bool mass_damped = has_mass_damping(parameters);
     if (mass_damped)
       mass_damping = 0.;
@@ -110,11 +110,10 @@ namespace SoftRobot
       if (cell->is_locally_owned())
         {
           fe_values.reinit(cell);
-          cell_matrix  = 0.;
-          cell_gravity = 0.;
-          const double rho_A =
-            densities.at(cell->material_id()) *
-            parameters.by_id.at(cell->material_id()).section;
+          cell_matrix        = 0.;
+          cell_gravity       = 0.;
+          const double rho_A = densities.at(cell->material_id()) *
+                               parameters.by_id.at(cell->material_id()).section;
           for (const unsigned int q : fe_values.quadrature_point_indices())
             for (const unsigned int i : fe_values.dof_indices())
               {
@@ -174,7 +173,7 @@ namespace SoftRobot
   // \varphi_n\varphi_k\,dV$ and the nodal positions and velocities.
   template <int dim>
   Tensor<1, 3>
-  Inertia<dim>::angular_momentum(const DoFHandler<dim>               &dof_handler,
+  Inertia<dim>::angular_momentum(const DoFHandler<dim> &dof_handler,
                                  const TrilinosWrappers::MPI::Vector &u,
                                  const TrilinosWrappers::MPI::Vector &v,
                                  const MPI_Comm mpi_communicator) const
@@ -183,7 +182,8 @@ namespace SoftRobot
     if constexpr (dim > 1)
       {
         const FiniteElement<dim> &fe = dof_handler.get_fe();
-        const unsigned int nodes_per_cell = fe.base_element(0).n_dofs_per_cell();
+        const unsigned int        nodes_per_cell =
+          fe.base_element(0).n_dofs_per_cell();
         std::vector<types::global_dof_index> dofs(fe.n_dofs_per_cell());
         std::vector<Tensor<1, dim>> x(nodes_per_cell), velocity(nodes_per_cell);
         unsigned int                cell_number = 0;

@@ -43,11 +43,12 @@ namespace SoftRobot
     const double       zeta = cell_zeta[cell];
     if (!(zeta > 0.))
       return;
-    const unsigned int               n        = geometry.dofs_per_cell;
-    const std::vector<unsigned int> &comp     = geometry.components;
-    const Tensor<1, dim>            *grad_phi = geometry.gradients(cell, point.q);
-    const double                     JxW      = geometry.weight(cell, point.q);
-    SymmetricTensor<4, dim> &D = viscosity[cell * geometry.n_q_points + point.q];
+    const unsigned int               n    = geometry.dofs_per_cell;
+    const std::vector<unsigned int> &comp = geometry.components;
+    const Tensor<1, dim>    *grad_phi     = geometry.gradients(cell, point.q);
+    const double             JxW          = geometry.weight(cell, point.q);
+    SymmetricTensor<4, dim> &D =
+      viscosity[cell * geometry.n_q_points + point.q];
     if (local.request.store_viscosity)
       {
         Assert(point.material_tangent != nullptr, ExcInternalError());
@@ -60,14 +61,14 @@ namespace SoftRobot
     for (unsigned int i = 0; i < n; ++i)
       local.second_force(i) += (F[comp[i]] * (S_v * grad_phi[i])) * JxW;
 
-    const bool with_matrix   = local.request.matrix;
-    const bool with_damping  = local.request.second_matrix;
+    const bool with_matrix  = local.request.matrix;
+    const bool with_damping = local.request.second_matrix;
     if (!with_matrix && !with_damping)
       return;
     Assert(point.delta_E != nullptr, ExcInternalError());
-    const std::vector<SymmetricTensor<2, dim>> &dE  = *point.delta_E;
-    const double                                c_v = local.request.velocity_coefficient;
-    const bool nonsymmetric = with_matrix && !symmetric_tangent;
+    const std::vector<SymmetricTensor<2, dim>> &dE = *point.delta_E;
+    const double c_v          = local.request.velocity_coefficient;
+    const bool   nonsymmetric = with_matrix && !symmetric_tangent;
     for (unsigned int i = 0; i < n; ++i)
       {
         const SymmetricTensor<2, dim> D_dE_i       = D * dE[i];
@@ -195,7 +196,7 @@ namespace SoftRobot
                   if (comp[i] != comp[j])
                     {
                       const unsigned int k = 3 - comp[i] - comp[j];
-                      const double sign =
+                      const double       sign =
                         ((comp[i] + 1) % 3 == comp[j]) ? 1. : -1.;
                       local.matrix(i, j) +=
                         w * sign *

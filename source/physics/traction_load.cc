@@ -8,7 +8,6 @@
 #include <core/expression_function.h>
 #include <deal.II/fe/fe_values.h>
 #include <physics/traction_load.h>
-
 #include <set>
 
 namespace SoftRobot
@@ -46,9 +45,9 @@ namespace SoftRobot
     components.clear();
     for (unsigned int i = 0; i < dofs_per_cell; ++i)
       components.push_back(fe.system_to_component_index(i).first);
-    const std::set<types::boundary_id> ids(boundary_ids.begin(),
+    const std::set<types::boundary_id>   ids(boundary_ids.begin(),
                                            boundary_ids.end());
-    FEFaceValues<dim> fe_face_values(mapping,
+    FEFaceValues<dim>                    fe_face_values(mapping,
                                      fe,
                                      quadrature,
                                      update_values | update_quadrature_points |
