@@ -98,6 +98,12 @@ namespace
       << "subsection Material 1\n  set Name = silicone\n"
       << "  set Shear modulus = 10\n  set Bulk modulus = 1000\n"
       << "  set Density = 1e-6\n  set Damping coefficient = 1e-3\nend\n"
+      // The damping matrix of the state itself, which the cell integral
+      // computes without a recorded viscosity (the Kelvin-Voigt damping
+      // needs the viscosity of the step's first state, which the
+      // simulator records; this file compares the global additions).
+      << "subsection Damping\n"
+      << "  set Stiffness-proportional damping = lagged matrix\nend\n"
       << "subsection Loads and constraints\n  set Fixed components = 0: "
       << std::string("xyz").substr(0, dim) << "\nend\n";
     Parameters::AllParameters parameters;

@@ -52,6 +52,9 @@
 #include <deal.II/grid/tria.h>
 #include <deal.II/lac/affine_constraints.h>
 #include <deal.II/lac/trilinos_vector.h>
+#include <iomanip>
+#include <iostream>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -61,6 +64,40 @@ namespace SoftRobot
 
   namespace InputChecks
   {
+    // deal.II's FunctionParser prints muparser's report of an error to
+    // std::cerr before it throws; the input errors say the same in one
+    // line, with the file and the entry. This silences std::cerr for as
+    // long as it lives.
+    class SilencedErrorStream
+    {
+    public:
+      SilencedErrorStream()
+        : saved(std::cerr.rdbuf(sink.rdbuf()))
+      {
+      }
+      ~SilencedErrorStream()
+      {
+        std::cerr.rdbuf(saved);
+      }
+
+    private:
+      std::ostringstream sink;
+      std::streambuf    *saved;
+    };
+
+    // A point as the messages print it, "(x, y, z)" to six digits.
+    template <int dim>
+    std::string
+    point_text(const Point<dim> &point)
+    {
+      std::ostringstream text;
+      text << std::setprecision(6) << '(';
+      for (unsigned int d = 0; d < dim; ++d)
+        text << (d == 0 ? "" : ", ") << point[d];
+      text << ')';
+      return text.str();
+    }
+
     // The largest magnitude the output can store (single precision).
     constexpr double largest_output_value = 3.4e38;
 

@@ -31,39 +31,6 @@ namespace SoftRobot
   {
     namespace
     {
-      // deal.II's FunctionParser prints muparser's own report of a syntax
-      // error to std::cerr before it throws; the program's message says
-      // the same in one line, with the file and the entry. This silences
-      // std::cerr for as long as it lives.
-      class SilencedErrorStream
-      {
-      public:
-        SilencedErrorStream()
-          : saved(std::cerr.rdbuf(sink.rdbuf()))
-        {
-        }
-        ~SilencedErrorStream()
-        {
-          std::cerr.rdbuf(saved);
-        }
-
-      private:
-        std::ostringstream sink;
-        std::streambuf    *saved;
-      };
-
-      template <int dim>
-      std::string
-      point_text(const Point<dim> &point)
-      {
-        std::ostringstream text;
-        text << std::setprecision(6) << '(';
-        for (unsigned int d = 0; d < dim; ++d)
-          text << (d == 0 ? "" : ", ") << point[d];
-        text << ')';
-        return text.str();
-      }
-
       std::string
       number_text(const double value)
       {

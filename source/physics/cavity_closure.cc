@@ -6,6 +6,7 @@
 
 #include <cmath>
 #include <core/config.h>
+#include <core/input_checks.h>
 #include <deal.II/grid/grid_tools.h>
 #include <iomanip>
 #include <map>
@@ -32,17 +33,6 @@ namespace SoftRobot
       return mask;
     }
 
-    template <int dim>
-    std::string
-    point_text(const Point<dim> &point)
-    {
-      std::ostringstream text;
-      text << std::setprecision(6) << '(';
-      for (unsigned int d = 0; d < dim; ++d)
-        text << (d == 0 ? "" : ", ") << point[d];
-      text << ')';
-      return text.str();
-    }
 
     // An open edge of the cavity surface: its vertices, and the fixed
     // components of the boundaries that hold the whole edge.
@@ -156,7 +146,7 @@ namespace SoftRobot
             Point<dim> centre;
             for (const Point<dim> &p : edge.vertices)
               centre += p / static_cast<double>(edge.vertices.size());
-            closure.open_edge = point_text(centre);
+            closure.open_edge = InputChecks::point_text(centre);
           }
         planes.push_back(candidates);
       }

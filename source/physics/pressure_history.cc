@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <core/expression_function.h>
+#include <core/input_checks.h>
 #include <core/parameter_file.h>
 #include <deal.II/base/exceptions.h>
 #include <deal.II/base/point.h>
@@ -42,25 +43,6 @@ namespace SoftRobot
       return fields;
     }
 
-    // deal.II's FunctionParser prints muparser's report of an error to
-    // std::cerr before it throws; the input error says it in one line.
-    // This silences std::cerr while it lives (as in input_checks.cc).
-    class SilencedErrorStream
-    {
-    public:
-      SilencedErrorStream()
-        : saved(std::cerr.rdbuf(sink.rdbuf()))
-      {
-      }
-      ~SilencedErrorStream()
-      {
-        std::cerr.rdbuf(saved);
-      }
-
-    private:
-      std::ostringstream sink;
-      std::streambuf    *saved;
-    };
 
     // A field as a number, or false if it is not one (all of it).
     bool
@@ -216,7 +198,7 @@ namespace SoftRobot
   {
     if (is_table())
       return;
-    SilencedErrorStream silence;
+    InputChecks::SilencedErrorStream silence;
     for (const double t : check_times)
       {
         double value = 0.;
