@@ -32,14 +32,6 @@ TYPED_TEST_SUITE(DampingTest, Dimensions);
 
 namespace
 {
-  Parameters::AllParameters
-  read(const std::string &text)
-  {
-    Parameters::AllParameters parameters;
-    parameters.read_string(text);
-    return parameters;
-  }
-
   // A box of 3 x 2 x 2 cells (side 1 mm, distorted), of one material with
   // the damping coefficient zeta, free (no constraints) or clamped at x = 0;
   // hexahedra or tetrahedra of degree p in the given volumetric
@@ -75,23 +67,6 @@ namespace
       << "subsection Linear solver\n  set Solver = Direct\nend\n"
       << more;
     return parameter_text(dim, sections.str());
-  }
-
-  // Random nodal values of amplitude `amplitude` (fixed seed), zero at the
-  // constrained dofs.
-  template <int dim>
-  TrilinosWrappers::MPI::Vector
-  random_vector(const Simulation<dim> &body,
-                const double           amplitude,
-                const unsigned int     seed)
-  {
-    TrilinosWrappers::MPI::Vector    u(body.displacement());
-    std::mt19937                     generator(seed);
-    std::uniform_real_distribution<> uniform(-amplitude, amplitude);
-    for (types::global_dof_index i = 0; i < u.size(); ++i)
-      u[i] = body.get_constraints().is_constrained(i) ? 0. : uniform(generator);
-    u.compress(VectorOperation::insert);
-    return u;
   }
 
   // The nodal values of a vector field of the reference position.

@@ -42,31 +42,6 @@ using namespace SoftRobot::Testing;
 
 namespace
 {
-  Parameters::AllParameters
-  read(const std::string &text)
-  {
-    Parameters::AllParameters parameters;
-    parameters.read_string(text);
-    return parameters;
-  }
-
-  // Random nodal values of amplitude `amplitude` (fixed seed), zero at the
-  // constrained dofs.
-  template <int dim>
-  TrilinosWrappers::MPI::Vector
-  random_vector(const SimulatorAccess<dim> &body,
-                const double                amplitude,
-                const unsigned int          seed)
-  {
-    TrilinosWrappers::MPI::Vector    u(body.displacement());
-    std::mt19937                     generator(seed);
-    std::uniform_real_distribution<> uniform(-amplitude, amplitude);
-    for (types::global_dof_index i = 0; i < u.size(); ++i)
-      u[i] = body.get_constraints().is_constrained(i) ? 0. : uniform(generator);
-    u.compress(VectorOperation::insert);
-    return u;
-  }
-
   // The nodal values of the displacement u = A X (a linear map).
   template <int dim>
   TrilinosWrappers::MPI::Vector

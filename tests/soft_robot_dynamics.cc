@@ -28,14 +28,6 @@ TYPED_TEST_SUITE(SolverTest, Dimensions);
 
 namespace
 {
-  Parameters::AllParameters
-  read(const std::string &text)
-  {
-    Parameters::AllParameters parameters;
-    parameters.read_string(text);
-    return parameters;
-  }
-
   // A material subsection.
   std::string
   material(const unsigned int id,

@@ -10,6 +10,7 @@
 #include <core/soft_robot_dynamics.h>
 #include <deal.II/lac/lapack_full_matrix.h>
 #include <gtest/gtest.h>
+#include <random>
 #include <sstream>
 #include <string>
 
@@ -57,6 +58,32 @@ namespace SoftRobot::Testing
   // inertia, angular momentum).
   using Dimensions2And3 = ::testing::Types<std::integral_constant<int, 2>,
                                            std::integral_constant<int, 3>>;
+
+  // The parameters that a parameter text gives.
+  inline Parameters::AllParameters
+  read(const std::string &text)
+  {
+    Parameters::AllParameters parameters;
+    parameters.read_string(text);
+    return parameters;
+  }
+
+  // Random nodal values of amplitude `amplitude` (fixed seed), zero at the
+  // constrained dofs; for runs on one process.
+  template <int dim>
+  TrilinosWrappers::MPI::Vector
+  random_vector(const SimulatorAccess<dim> &body,
+                const double                amplitude,
+                const unsigned int          seed)
+  {
+    TrilinosWrappers::MPI::Vector    u(body.displacement());
+    std::mt19937                     generator(seed);
+    std::uniform_real_distribution<> uniform(-amplitude, amplitude);
+    for (types::global_dof_index i = 0; i < u.size(); ++i)
+      u[i] = body.get_constraints().is_constrained(i) ? 0. : uniform(generator);
+    u.compress(VectorOperation::insert);
+    return u;
+  }
 
   // The parameter text of a small body: everything the tests do not set
   // explicitly has the program's default. `sections` is appended verbatim.

@@ -117,9 +117,9 @@ namespace
   // a given numbering.
   template <int dim>
   TrilinosWrappers::MPI::Vector
-  random_vector(const Simulation<dim> &body,
-                const double           amplitude,
-                const unsigned int     seed)
+  partition_independent_random_vector(const Simulation<dim> &body,
+                                      const double           amplitude,
+                                      const unsigned int     seed)
   {
     TrilinosWrappers::MPI::Vector    u(body.displacement());
     const IndexSet                  &owned = u.locally_owned_elements();
@@ -375,9 +375,11 @@ namespace
     // the amplitude between nodes whose distance is about the cell size
     // over the degree (0.5 to 1 for the hexahedra, about half of that for
     // the simplices).
-    const double amplitude                = (simplices ? 0.015 : 0.03) / degree;
-    const TrilinosWrappers::MPI::Vector u = random_vector(body, amplitude, 1);
-    const TrilinosWrappers::MPI::Vector v = random_vector(body, 1., 2);
+    const double amplitude = (simplices ? 0.015 : 0.03) / degree;
+    const TrilinosWrappers::MPI::Vector u =
+      partition_independent_random_vector(body, amplitude, 1);
+    const TrilinosWrappers::MPI::Vector v =
+      partition_independent_random_vector(body, 1., 2);
 
     const IndexSet owned = body.get_dof_handler().locally_owned_dofs();
     IndexSet       relevant;

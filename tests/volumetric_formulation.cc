@@ -61,14 +61,6 @@ namespace
     return parameter_text(dim, sections.str());
   }
 
-  Parameters::AllParameters
-  read(const std::string &text)
-  {
-    Parameters::AllParameters parameters;
-    parameters.read_string(text);
-    return parameters;
-  }
-
   // A displacement of amplitude `amplitude` with random nodal values (fixed
   // seed), zero at the constrained dofs.
   template <int dim>
