@@ -38,7 +38,7 @@
 set -euo pipefail
 cd "$(dirname "$0")"
 
-packages=(cmake make g++ libdeal.ii-dev libfftw3-dev liblapack-dev libgtest-dev)
+packages=(cmake make g++ libdeal.ii-dev libfftw3-dev liblapack-dev libgtest-dev nlohmann-json3-dev)
 
 install_missing_packages() {
   local missing=()
