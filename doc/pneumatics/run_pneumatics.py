@@ -17,6 +17,9 @@ Cases:
 - static_<p>: the static equilibrium of parameters/bellows/
   inflation_ds20_3d.prm at the constant gauge pressure p (0 to 12 kPa);
 - inflation: the scene itself (ramp to 8 kPa in 1 s, hold 1 s, vent);
+- static1d_<p>, static2d_<p>, inflation_1d, inflation_2d: the same on the
+  reduced 1D column and 2D strip (parameters/bellows/inflation_ds20_1d.prm,
+  inflation_ds20_2d.prm), whose end load p A_eq stands for the cavity;
 - drive_<f>: parameters/bellows/oscillation_ds20_3d.prm, a sinusoidal
   pressure of 0.2 kPa amplitude at the drive frequency f (Hz), 10 s; the
   response amplitude is the amplitude of the tip displacement's component
@@ -56,6 +59,8 @@ QUIET = ["Output/Progress interval=0", "Output/Write VTU=false",
 VACUUM_SCENE = "parameters/bellows/vacuum_release_ds20_3d.prm"
 HOLD_SCENE = "parameters/bellows/vertical_ds20_3d.prm"
 INFLATION_SCENE = "parameters/bellows/inflation_ds20_3d.prm"
+REDUCED_INFLATION = {"1d": "parameters/bellows/inflation_ds20_1d.prm",
+                     "2d": "parameters/bellows/inflation_ds20_2d.prm"}
 OSCILLATION_SCENE = "parameters/bellows/oscillation_ds20_3d.prm"
 # drive frequencies, Hz: around the natural frequency 3.53 Hz of the
 # vertical mode (the releases below ring at it)
@@ -73,6 +78,12 @@ CASES += [(f"static_{p}", INFLATION_SCENE, f"static, {p} kPa",
            [f"Pneumatics/Pressure={p}", "Time integration/End time=0.01",
             "Initial conditions/Load steps=8"], "static") for p in PRESSURES]
 CASES.append(("inflation", INFLATION_SCENE, "ramp, hold, vent", [], "inflation"))
+for reduced, scene in REDUCED_INFLATION.items():
+    CASES += [(f"static{reduced}_{p}", scene, f"static, {p} kPa, {reduced.upper()}",
+               [f"Pneumatics/Pressure={p}", "Time integration/End time=0.01",
+                "Initial conditions/Load steps=8"], "static") for p in PRESSURES]
+    CASES.append((f"inflation_{reduced}", scene, f"ramp, hold, vent, {reduced.upper()}",
+                  [], "inflation"))
 CASES += [(f"drive_{f}", OSCILLATION_SCENE, f"drive at {f} Hz",
            [f"Loads and constraints/Function constants=hold=1.1397, p_amp=0.2, f_drive={f}"],
            "drive") for f in DRIVES]
@@ -119,6 +130,8 @@ def analyse(build, output, kind):
     data, finite = read_trajectory(trajectory)
     result = {"finite": finite, "u0": float(data["u_x"][0]),
               "balance_end": float(data["energy_balance"][-1])}
+    if len(data["t"]) > 2:
+        result["dt"] = float(np.median(np.diff(data["t"])))
     if "cavity_volume" in data:
         result["volume0"] = float(data["cavity_volume"][0])
     if "pressure_work" in data:
@@ -172,7 +185,13 @@ def figure(path, by_name):
     points = [(float(p), r["u0"]) for p, r in zip(PRESSURES, statics)
               if r is not None and "u0" in r]
     if points:
-        ax.plot(*zip(*points), "o-", color="k", label="static equilibrium")
+        ax.plot(*zip(*points), "o-", color="k", label="static equilibrium, 3D")
+    for reduced, marker in (("1d", "s"), ("2d", "^")):
+        runs = [(float(p), by_name.get(f"static{reduced}_{p}")) for p in PRESSURES]
+        points = [(p, r["u0"]) for p, r in runs if r is not None and "u0" in r]
+        if points:
+            ax.plot(*zip(*points), marker, ls="none", mfc="none", color="tab:green",
+                    label=f"static equilibrium, {reduced.upper()} (end load p A_eq)")
     inflation = by_name.get("inflation")
     if inflation and "curve" in inflation:
         curve = inflation["curve"]
@@ -223,9 +242,14 @@ def write_report(path, results, session):
              "what follows from them is in "
              "[pneumatics_discussion.md](pneumatics_discussion.md).", ""]
     lines += run_lines(session) + [""]
+    steps = sorted({round(by_name[n]["dt"], 6) for n in
+                    [f"vacuum_{level}" for level in LEVELS] + ["hold"]
+                    if n in by_name and "dt" in by_name[n]})
+    step_text = ", ".join(f"{dt:g}" for dt in steps) if steps else "—"
     lines += ["## Experiment 1: released from a soft vacuum, and from the hold", "",
               "Dragon Skin 20, baseline parameter set, quarter model, 5.25 s at "
-              "dt = 0.01 s. u0 is the tip block's initial displacement along the "
+              f"dt = {step_text} s (the scenes' step). u0 is the tip block's initial "
+              "displacement along the "
               "axis (mm, from the unloaded shape); f and ξ of the vertical motion "
               "by the half-power bandwidth (the study's method) and by the modal "
               "fit of tip-spectrum; B the energy balance at the end (µJ, HHT's "
@@ -261,22 +285,61 @@ def write_report(path, results, session):
             area = (after["volume0"] - before["volume0"]) / (after["u0"] - before["u0"])
         lines.append(f"| {p:g} | {fmt(r['u0'], 5)} | {fmt(r.get('volume0'), 6)} | "
                      f"{fmt(area, 4)} |")
-    inflation = by_name.get("inflation")
-    if inflation and "u_end_of_ramp" in inflation:
+    by_pressure = {p: r for p, r in statics}
+    if 0. in by_pressure and 8. in by_pressure:
+        zero, eight = by_pressure[0.], by_pressure[8.]
+        secant = (eight["volume0"] - zero["volume0"]) / (eight["u0"] - zero["u0"])
+        lines += ["", f"Secant over 0 to 8 kPa: A_eq = {secant:.1f} mm² "
+                  "(the reduced scenes use 392 mm²)."]
+    lines += ["", "## The reduced models' end load against the 3D cavity", "",
+              "The same static equilibria on the reduced 1D column "
+              "(`parameters/bellows/inflation_ds20_1d.prm`) and 2D strip "
+              "(`inflation_ds20_2d.prm`), loaded by the end force p A_eq with "
+              "A_eq = 392 mm². δ − δ0 is the elongation the pressure adds to the "
+              "hanging equilibrium; the differences are those of δ − δ0 from the 3D "
+              "model's.", "",
+              "| p (kPa) | δ 3D (mm) | δ 1D (mm) | δ 2D (mm) | δ − δ0 3D (mm) "
+              "| 1D against 3D | 2D against 3D |", "|---|---|---|---|---|---|---|"]
+    reduced = {d: {float(p): by_name.get(f"static{d}_{p}") for p in PRESSURES}
+               for d in REDUCED_INFLATION}
+
+    def tip(r):
+        return r["u0"] if r is not None and "u0" in r else None
+
+    base = {d: tip(reduced[d].get(0.)) for d in reduced}
+    for p, r in statics:
+        added = r["u0"] - by_pressure[0.]["u0"] if 0. in by_pressure else None
+        cells = [fmt(r["u0"], 5)]
+        differences = []
+        for d in REDUCED_INFLATION:
+            value = tip(reduced[d].get(p))
+            cells.append(fmt(value, 5))
+            if value is None or base[d] is None or not added:
+                differences.append("—")
+            else:
+                differences.append(f"{100. * ((value - base[d]) / added - 1.):+.1f} %")
+        lines.append(f"| {p:g} | " + " | ".join(cells) + f" | {fmt(added, 4)} | "
+                     + " | ".join(differences) + " |")
+    runs = [(d, by_name.get(f"inflation_{d}")) for d in ("3d", "1d", "2d")]
+    runs = [(d, r) for d, r in runs if r is not None and "u_end_of_ramp" in r]
+    if runs:
         lines += ["", "## Inflation: ramp, hold, vent", "",
-                  "`parameters/bellows/inflation_ds20_3d.prm`: 0 to 8 kPa in 1 s, held "
-                  "1 s, vented in 20 ms, 1 s more.", "",
-                  "| quantity | value |", "|---|---|",
-                  f"| status, wall time | {inflation.get('status')}, "
-                  f"{inflation['measured_seconds']:.0f} s |",
-                  f"| tip displacement at the start (hanging), mm | {fmt(inflation['u0'], 5)} |",
-                  f"| at the end of the ramp, mm | {fmt(inflation['u_end_of_ramp'], 5)} |",
-                  f"| during the hold, min / max, mm | {fmt(inflation['u_held_min'], 5)} / "
-                  f"{fmt(inflation['u_held_max'], 5)} |",
-                  f"| after the vent, min / max, mm | {fmt(inflation['u_vented_min'], 5)} / "
-                  f"{fmt(inflation['u_vented_max'], 5)} |",
-                  f"| largest pressure work, µJ | {fmt(inflation.get('pressure_work_max'), 5)} |",
-                  f"| energy balance at the end, µJ | {fmt(inflation['balance_end'], 4)} |"]
+                  "`parameters/bellows/inflation_ds20_3d.prm` and its reduced 1D and 2D "
+                  "scenes: 0 to 8 kPa in 1 s, held 1 s, vented in 20 ms, 1 s more.", "",
+                  "| quantity | " + " | ".join(d.upper() for d, _ in runs) + " |",
+                  "|---|" + "---|" * len(runs)]
+        rows = [("status, wall time (s)",
+                 lambda r: f"{r.get('status')}, {r['measured_seconds']:.0f}"),
+                ("tip displacement at the start (hanging), mm", lambda r: fmt(r["u0"], 5)),
+                ("at the end of the ramp, mm", lambda r: fmt(r["u_end_of_ramp"], 5)),
+                ("during the hold, min / max, mm",
+                 lambda r: f"{fmt(r['u_held_min'], 5)} / {fmt(r['u_held_max'], 5)}"),
+                ("after the vent, min / max, mm",
+                 lambda r: f"{fmt(r['u_vented_min'], 5)} / {fmt(r['u_vented_max'], 5)}"),
+                ("largest pressure work, µJ", lambda r: fmt(r.get("pressure_work_max"), 5)),
+                ("energy balance at the end, µJ", lambda r: fmt(r["balance_end"], 4))]
+        for label, cell in rows:
+            lines.append(f"| {label} | " + " | ".join(cell(r) for _, r in runs) + " |")
     lines += ["", "![elongation against pressure](figures/pneumatics_elongation.png)", "",
               "Elongation against pressure: the static curve (dots) and the tip of the "
               "inflation scene (lines), written by this script from the runs listed "
