@@ -376,7 +376,16 @@ namespace SoftRobot
           }
         else
           {
-            SolverGMRES<TrilinosWrappers::MPI::Vector> gmres(control);
+            // Right preconditioning: GMRES then minimizes, and the control
+            // tests, the residual of the system itself. With deal.II's
+            // default, left preconditioning, the control would test the
+            // preconditioned residual, which AMG scales by the inverse of
+            // the stiffness: a step of the bellows "converged" in three
+            // iterations with a wrong update.
+            SolverGMRES<TrilinosWrappers::MPI::Vector> gmres(
+              control,
+              SolverGMRES<TrilinosWrappers::MPI::Vector>::AdditionalData(
+                30, true));
             gmres.solve(*prepared_matrix, solution, rhs, *amg_preconditioner);
           }
       }

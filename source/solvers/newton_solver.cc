@@ -154,13 +154,24 @@ namespace SoftRobot
         // The update solves $\mathbf K\mathbf d_k = -\mathbf r_k$; the
         // residual vector serves as the right-hand side (an accepted step
         // replaces it, a rebuild evaluates it again). An update at round-off
-        // level relative to the displacement cannot improve it any further.
+        // level relative to the displacement cannot improve it any further:
+        // that ends the iteration if the residual is at round-off level too
+        // (as for a stagnated line search below); otherwise the linear solve
+        // has failed to give an update, and so has the step.
         state.residual *= -1.;
         const unsigned int linear_iterations =
           problem.solve(state.residual, state.update);
         state.linear_iterations += linear_iterations;
         if (state.update.linfty_norm() <= 1e-14 * u.linfty_norm())
-          break;
+          {
+            if (state.norm <= 1e-6 * state.reference)
+              break;
+            std::ostringstream message;
+            message << "the linear solve gave no update (largest entry "
+                    << state.update.linfty_norm() << ") at the residual "
+                    << state.norm;
+            throw StepFailure(message.str());
+          }
 
         // The new iterate: the accelerated one, or one of the line search,
         // or, at round-off level, the last trial.
