@@ -68,6 +68,11 @@ DRIVES = ("1.77", "3", "3.35", "3.53", "3.71", "4.06", "5.3")
 STEADY = 6.0  # s: the response is fitted after this time
 LEVELS = ("1.5", "2.74", "4")
 PRESSURES = ("0", "2", "4", "6", "8", "10", "12")
+# end forces, mN (whole body), pulling the tip block along the axis: the
+# force-elongation curves that give the pressure's force-equivalent area
+FORCES = ("500", "1000", "2000", "3000", "4000", "5000")
+TIP_AREA = 841.  # mm^2, the bottom face of the tip block (whole body)
+REDUCED_AREA = 328.  # mm^2, the Equivalent area of the reduced inflation scenes
 
 # name, scene, label, overrides, kind
 CASES = [(f"vacuum_{level}", VACUUM_SCENE, f"vacuum release, {level} kPa",
@@ -78,7 +83,18 @@ CASES += [(f"static_{p}", INFLATION_SCENE, f"static, {p} kPa",
            [f"Pneumatics/Pressure={p}", "Time integration/End time=0.01",
             "Initial conditions/Load steps=8"], "static") for p in PRESSURES]
 CASES.append(("inflation", INFLATION_SCENE, "ramp, hold, vent", [], "inflation"))
+CASES += [(f"force_{f}", INFLATION_SCENE, f"static, end force {f} mN",
+           ["Pneumatics/Pressure=0", "Loads and constraints/Traction boundary ids=5",
+            f"Loads and constraints/Traction=(x > 99.2) ? {float(f) / TIP_AREA:.6g} : 0; 0; 0",
+            "Time integration/End time=0.01", "Initial conditions/Load steps=8"],
+           "static") for f in FORCES]
 for reduced, scene in REDUCED_INFLATION.items():
+    traction = f"{{f}}/section" if reduced == "1d" else f"{{f}}/end_area; 0"
+    CASES += [(f"force{reduced}_{f}", scene, f"static, end force {f} mN, {reduced.upper()}",
+               ["Pneumatics/Pressure=0", "Loads and constraints/Traction boundary ids=1",
+                "Loads and constraints/Traction=" + traction.format(f=f),
+                "Time integration/End time=0.01", "Initial conditions/Load steps=8"],
+               "static") for f in FORCES]
     CASES += [(f"static{reduced}_{p}", scene, f"static, {p} kPa, {reduced.upper()}",
                [f"Pneumatics/Pressure={p}", "Time integration/End time=0.01",
                 "Initial conditions/Load steps=8"], "static") for p in PRESSURES]
@@ -270,11 +286,11 @@ def write_report(path, results, session):
     lines += ["", "## Inflation: the static curve", "",
               "Static equilibria of `parameters/bellows/inflation_ds20_3d.prm` "
               "(hanging under gravity, the gauge pressure p on the cavity wall). "
-              "The equivalent area is the centred difference "
+              "A_work is the centred difference "
               "dV/dδ of the cavity volume (whole body) by the tip displacement "
-              "between the neighbouring pressures: the area with which the "
-              "reduced models' end load p A_eq does the same work.", "",
-              "| p (kPa) | tip displacement (mm) | cavity volume (mm³) | A_eq = dV/dδ (mm²) |",
+              "between the neighbouring pressures: the area with which an end "
+              "load p A_work would do the pressure's work along this path.", "",
+              "| p (kPa) | tip displacement (mm) | cavity volume (mm³) | A_work = dV/dδ (mm²) |",
               "|---|---|---|---|"]
     statics = [(float(p), by_name.get(f"static_{p}")) for p in PRESSURES]
     statics = [(p, r) for p, r in statics if r is not None and "u0" in r]
@@ -289,38 +305,64 @@ def write_report(path, results, session):
     if 0. in by_pressure and 8. in by_pressure:
         zero, eight = by_pressure[0.], by_pressure[8.]
         secant = (eight["volume0"] - zero["volume0"]) / (eight["u0"] - zero["u0"])
-        lines += ["", f"Secant over 0 to 8 kPa: A_eq = {secant:.1f} mm² "
-                  "(the reduced scenes use 392 mm²)."]
-    lines += ["", "## The reduced models' end load against the 3D cavity", "",
-              "The same static equilibria on the reduced 1D column "
-              "(`parameters/bellows/inflation_ds20_1d.prm`) and 2D strip "
-              "(`inflation_ds20_2d.prm`), loaded by the end force p A_eq with "
-              "A_eq = 392 mm². δ − δ0 is the elongation the pressure adds to the "
-              "hanging equilibrium; the differences are those of δ − δ0 from the 3D "
-              "model's.", "",
-              "| p (kPa) | δ 3D (mm) | δ 1D (mm) | δ 2D (mm) | δ − δ0 3D (mm) "
-              "| 1D against 3D | 2D against 3D |", "|---|---|---|---|---|---|---|"]
-    reduced = {d: {float(p): by_name.get(f"static{d}_{p}") for p in PRESSURES}
-               for d in REDUCED_INFLATION}
-
+        lines += ["", f"Secant over 0 to 8 kPa: dV/dδ = {secant:.1f} mm²."]
     def tip(r):
         return r["u0"] if r is not None and "u0" in r else None
 
-    base = {d: tip(reduced[d].get(0.)) for d in reduced}
+    # the force-elongation curves, the hanging state (no force) first
+    force_curves = {}
+    for d, prefix in (("3d", "force_"), ("1d", "force1d_"), ("2d", "force2d_")):
+        hanging = by_name.get("static_0" if d == "3d" else f"static{d}_0")
+        points = [(0., tip(hanging))] + [(float(f), tip(by_name.get(prefix + f)))
+                                         for f in FORCES]
+        force_curves[d] = [(f, u) for f, u in points if u is not None]
+    lines += ["", "## The reduced models' end load against the 3D cavity", "",
+              "The end force F on the tip block (whole body, pulling along the axis, "
+              "no pressure) against the tip displacement δ of the 3D model and of the "
+              "reduced 1D column and 2D strip, from their hanging equilibria; the "
+              "differences are those of the elongation the force adds, δ − δ(0), from "
+              "the 3D model's.", "",
+              "| F (mN) | δ 3D (mm) | δ 1D (mm) | δ 2D (mm) | 1D against 3D | 2D against 3D |",
+              "|---|---|---|---|---|---|"]
+    curve3 = dict(force_curves["3d"])
+
+    def added_difference(d, key, reference, reference_zero, curves):
+        values = dict(curves[d])
+        if key not in values or 0. not in values or not reference - reference_zero:
+            return "—"
+        return f"{100. * ((values[key] - values[0.]) / (reference - reference_zero) - 1.):+.1f} %"
+
+    for f, u in force_curves["3d"]:
+        cells = [fmt(u, 5)] + [fmt(dict(force_curves[d]).get(f), 5) for d in ("1d", "2d")]
+        differences = [added_difference(d, f, u, curve3[0.], force_curves) if f else "—"
+                       for d in ("1d", "2d")]
+        lines.append(f"| {f:g} | " + " | ".join(cells) + " | " + " | ".join(differences) + " |")
+    lines += ["", "The 3D model's response to the pressure and to the end force, side by "
+              "side: F_eq is the end force that gives the 3D model the elongation the "
+              "pressure p gives it (interpolated linearly on the force curve above), "
+              "A_force = F_eq / p the force-equivalent area, A_work = dV/dδ the area of "
+              "the static table above. δ 1D and δ 2D are the reduced scenes' "
+              "(`parameters/bellows/inflation_ds20_1d.prm`, `inflation_ds20_2d.prm`) "
+              f"with their Equivalent area {REDUCED_AREA:g} mm²; the differences as "
+              "above.", "",
+              "| p (kPa) | δ 3D (mm) | F_eq (mN) | A_force (mm²) | δ 1D (mm) | δ 2D (mm) "
+              "| 1D against 3D | 2D against 3D |", "|---|---|---|---|---|---|---|---|"]
+    reduced = {d: [(float(p), tip(by_name.get(f"static{d}_{p}"))) for p in PRESSURES]
+               for d in REDUCED_INFLATION}
+    forces, elongations = (np.array(v) for v in zip(*force_curves["3d"])) \
+        if len(force_curves["3d"]) > 1 else (None, None)
     for p, r in statics:
-        added = r["u0"] - by_pressure[0.]["u0"] if 0. in by_pressure else None
-        cells = [fmt(r["u0"], 5)]
-        differences = []
-        for d in REDUCED_INFLATION:
-            value = tip(reduced[d].get(p))
-            cells.append(fmt(value, 5))
-            if value is None or base[d] is None or not added:
-                differences.append("—")
-            else:
-                differences.append(f"{100. * ((value - base[d]) / added - 1.):+.1f} %")
-        lines.append(f"| {p:g} | " + " | ".join(cells) + f" | {fmt(added, 4)} | "
-                     + " | ".join(differences) + " |")
-    runs = [(d, by_name.get(f"inflation_{d}")) for d in ("3d", "1d", "2d")]
+        f_eq = area = None
+        if forces is not None and p > 0 and elongations[0] <= r["u0"] <= elongations[-1]:
+            f_eq = float(np.interp(r["u0"], elongations, forces))
+            area = f_eq / p
+        cells = [fmt(r["u0"], 5), fmt(f_eq, 4), fmt(area, 4)]
+        cells += [fmt(dict(reduced[d]).get(p), 5) for d in ("1d", "2d")]
+        differences = [added_difference(d, p, r["u0"], by_pressure[0.]["u0"], reduced)
+                       if p and 0. in by_pressure else "—" for d in ("1d", "2d")]
+        lines.append(f"| {p:g} | " + " | ".join(cells) + " | " + " | ".join(differences) + " |")
+    runs = [(d, by_name.get("inflation" if d == "3d" else f"inflation_{d}"))
+            for d in ("3d", "1d", "2d")]
     runs = [(d, r) for d, r in runs if r is not None and "u_end_of_ramp" in r]
     if runs:
         lines += ["", "## Inflation: ramp, hold, vent", "",

@@ -15,8 +15,12 @@
 //   and the forces $\mathbf f_\text{int}(\mathbf u_n)$, $\mathbf
 //   f_\text{ext}(t_n)$ and $\mathbf f_\text{d}(\mathbf u_n, \mathbf v_n)$,
 //   which the HHT equation of the next step weights with $-\alpha$;
-// - the energy account, with the HHT damping and traction forces of the
-//   last step that its sums go on from, and the initial total energy;
+// - the energy account, the pressure work included, with the HHT damping,
+//   traction and pressure forces of the last step that its sums go on
+//   from, and the initial total energy;
+// - a gas sealed in the cavity: its volume and mass at sealing, which with
+//   the inflow (a function of time) and the cavity's volume give its
+//   pressure (include/physics/gas_cavity.h);
 // - the time-step controller (the step size, the steps since the last
 //   cut-back, the cut-backs so far) and the counters of the run (steps,
 //   Newton and linear iterations, factorizations);
@@ -92,7 +96,7 @@ namespace SoftRobot
   struct CheckpointData
   {
     // What the checkpoint must agree with.
-    unsigned int  format_version = 1;
+    unsigned int  format_version = 2;
     unsigned int  dimension      = 0;
     unsigned int  n_processes    = 0;
     unsigned int  rank           = 0;
@@ -130,6 +134,10 @@ namespace SoftRobot
     double                                     older_stiffness_time = 0.;
     std::vector<double>                        older_stiffness;
 
+    // The gas sealed in the cavity (GasCavity::sealed_state()): its volume
+    // and mass at sealing; empty without a gas.
+    std::vector<double> gas_seal;
+
     template <class Archive>
     void
     serialize(Archive &archive, const unsigned int /*version*/)
@@ -143,7 +151,8 @@ namespace SoftRobot
       archive &trajectory_length &next_output_time &last_output_time
         &pvd_records &xdmf_records;
       archive &vectors &has_older_stiffness &older_stiffness_time
-        &older_stiffness;
+              &older_stiffness;
+      archive &gas_seal;
     }
   };
 

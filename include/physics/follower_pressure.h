@@ -87,11 +87,8 @@
 // @sect4{The reduced models' end load}
 //
 // The 1D column and the 2D strip of the bellows have no cavity. The
-// pressure in the bellows' cavity pulls on the end cap with the resultant
-// $p\,A_\text{eq}$ along the axis, where $A_\text{eq} = dV/d\delta$ is the
-// rate at which the cavity's volume grows with the tip's elongation
-// $\delta$ (the principle of virtual work: the pressure's generalized force
-// on $\delta$ is $p\,dV/d\delta$). With `Equivalent area` $A_\text{eq} >
+// pressure in the bellows' cavity pulls on the end cap with a resultant
+// $p\,A_\text{eq}$ along the axis. With `Equivalent area` $A_\text{eq} >
 // 0$ the faces of the Pressure boundary ids (the column's end, the strip's
 // end edge) carry that force, spread evenly over their reference area
 // $A_\text{end}$ (times the Section) along their reference normal: $\mathbf
@@ -99,10 +96,22 @@
 // \int (A_\text{eq}/A_\text{end})\,\mathbf u\cdot\mathbf N\,dA$, the
 // cavity's growth (the Dead volume holds the cavity's own volume). The
 // load is conservative and has no stiffness of its own.
-// doc/pneumatics.md gives $A_\text{eq} = dV/d\delta$ from the 3D
-// actuator's static pressure-elongation curve (the cavity volume against
-// the tip displacement). The reduced scenes do not use it yet: their
-// pressure-elongation curves are not compared with the 3D one.
+//
+// Which area? The principle of virtual work suggests $A_\text{eq} =
+// dV/d\delta$, the rate at which the cavity's volume grows with the tip's
+// elongation $\delta$, but that holds only if the cavity's shape were a
+// function of $\delta$ alone. The pressure also bulges the convolutions:
+// part of $dV$ comes from walls that move sideways, and that work goes into
+// their strain, not into the elongation. The area that gives a reduced
+// model the 3D actuator's elongation is the force-equivalent one, the end
+// force that elongates the 3D model as far as the pressure does, per unit
+// pressure. doc/pneumatics.md measures both on the 3D quarter model
+// (Dragon Skin 20): $dV/d\delta$ = 389 to 416 mm², the force-equivalent
+// area 328 to 292 mm² over 2 to 12 kPa; an end load with $dV/d\delta$
+// elongated the reduced models by a third more than the 3D model at 2 kPa.
+// A gas in a reduced model sees its volume change through the same
+// $A_\text{eq}$, so with the force-equivalent area its volume grows more
+// slowly than the 3D cavity's.
 //
 // Implemented in source/physics/follower_pressure.cc.
 

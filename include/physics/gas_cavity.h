@@ -79,6 +79,16 @@ namespace SoftRobot
       return sealed_volume > 0.;
     }
 
+    // The volume (mm^3) and mass (kg) at sealing, for a checkpoint, and the
+    // seal restored from them at a restart.
+    std::vector<double>
+    sealed_state() const
+    {
+      return {sealed_volume, sealed_mass};
+    }
+    void
+    restore_seal(const std::vector<double> &state);
+
     // The gauge pressure (kPa) of the gas at the volume V (mm^3) and time
     // t, and its derivative dp/dV; throws StepFailure for a volume or a
     // gas mass that is not positive.

@@ -110,6 +110,13 @@ namespace SoftRobot
     void
     seal(const TrilinosWrappers::MPI::Vector &u);
 
+    // The sealed gas's state for a checkpoint (empty without a gas), and the
+    // seal restored from it.
+    std::vector<double>
+    gas_seal() const;
+    void
+    restore_gas_seal(const std::vector<double> &state);
+
     // The load stiffness of the cell's faces at the pressure of the last
     // evaluation (see FollowerPressure::add_cell_contribution()).
     void

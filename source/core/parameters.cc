@@ -603,7 +603,9 @@ namespace SoftRobot
         "acts as the end force p A on the Pressure boundary ids, spread "
         "evenly over them along their reference outer normal, and the cavity "
         "volume changes by A times their mean normal displacement; A in "
-        "mm^2, the area dV/d(elongation) of the 3D actuator. 0: the "
+        "mm^2, the force-equivalent area of the 3D actuator (the end force "
+        "that elongates it as far as the pressure does, per unit pressure; "
+        "see doc/pneumatics.md). 0: the "
         "pressure acts on the deformed boundary itself (any dimension).");
       prm.declare_entry("Initial pressure",
                         "0",
@@ -1361,12 +1363,6 @@ namespace SoftRobot
     {
       const std::string where = this->where() + "Pneumatics/";
       const bool        gas   = (pressure_model == PressureModel::gas);
-      // The checkpoint does not hold the gas sealed at t = 0.
-      AssertThrow(!(has_pressure() && gas && checkpoint_interval > 0),
-                  ExcMessage(this->where() + "Output/Checkpoint interval = " +
-                             std::to_string(checkpoint_interval) +
-                             ": checkpoints are not available with "
-                             "Pneumatics/Pressure model = gas; set it to 0."));
       AssertThrow(pressure_expression.empty() || pressure_table.empty(),
                   ExcMessage(where + "Pressure = '" + pressure_expression +
                              "' and Pressure table = '" + pressure_table +

@@ -83,7 +83,8 @@ namespace SoftRobot
                                  energy.strain,
                                  energy.gravity_potential,
                                  energy.traction_work,
-                                 energy.damping_dissipation};
+                                 energy.damping_dissipation,
+                                 energy.pressure_work};
     data.initial_total_energy = initial_total_energy;
 
     data.trajectory_length = trajectory.length();
@@ -104,6 +105,12 @@ namespace SoftRobot
           std::make_pair("hht_damping_force", &hht_damping_force),
           std::make_pair("hht_traction_force", &hht_traction_force)})
       data.vectors[name] = Checkpoint::local_values(*vector);
+    if (pneumatics)
+      {
+        data.vectors["hht_pressure_force"] =
+          Checkpoint::local_values(hht_pressure_force);
+        data.gas_seal = pneumatics->gas_seal();
+      }
     // $\mathbf K_{n-1}$, from which the next step extrapolates (the next
     // step moves it to `older` and records $\mathbf K_n$ as `newer`).
     if (stiffness_history.newer)
@@ -135,15 +142,7 @@ namespace SoftRobot
   CheckpointData
   SoftRobotDynamics<dim>::restore_checkpoint()
   {
-    TimerOutput::Scope timer_section(computing_timer, "Restart");
-    AssertThrow(!(parameters.has_pressure() &&
-                  parameters.pressure_model ==
-                    Parameters::Pneumatics::PressureModel::gas),
-                ExcMessage(
-                  parameters.where() +
-                  "Pneumatics/Pressure model = gas: the checkpoint "
-                  "does not hold the gas sealed at t = 0, so a run "
-                  "with a gas cavity cannot be continued (--restart)."));
+    TimerOutput::Scope   timer_section(computing_timer, "Restart");
     const CheckpointData data =
       Checkpoint::read(parameters.restart_directory, mpi_communicator);
     Checkpoint::check_compatible(data,
@@ -161,12 +160,13 @@ namespace SoftRobot
     linear_solver.set_n_preparations(data.factorizations);
     step_controller.set_state(
       {data.time_step, data.steps_since_cutback, data.total_cutbacks});
-    AssertThrow(data.energies.size() == 5, ExcInternalError());
+    AssertThrow(data.energies.size() == 6, ExcInternalError());
     energy.kinetic             = data.energies[0];
     energy.strain              = data.energies[1];
     energy.gravity_potential   = data.energies[2];
     energy.traction_work       = data.energies[3];
     energy.damping_dissipation = data.energies[4];
+    energy.pressure_work       = data.energies[5];
     initial_total_energy       = data.initial_total_energy;
     next_output_time           = data.next_output_time;
     last_output_time           = data.last_output_time;
@@ -187,6 +187,19 @@ namespace SoftRobot
                                std::string(name) + "'."));
         vector->reinit(locally_owned_dofs, mpi_communicator);
         Checkpoint::set_local_values(values->second, *vector);
+      }
+
+    // The pneumatics: the HHT pressure force of the energy account, and
+    // the sealed gas, before the state's pressure is evaluated again.
+    if (pneumatics)
+      {
+        const auto values = data.vectors.find("hht_pressure_force");
+        AssertThrow(values != data.vectors.end(),
+                    ExcMessage("The checkpoint has no vector "
+                               "'hht_pressure_force'."));
+        hht_pressure_force.reinit(locally_owned_dofs, mpi_communicator);
+        Checkpoint::set_local_values(values->second, hht_pressure_force);
+        pneumatics->restore_gas_seal(data.gas_seal);
       }
 
     // What the state determines, assembled again and checked.

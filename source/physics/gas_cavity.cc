@@ -79,6 +79,20 @@ namespace SoftRobot
 
 
 
+  // @sect4{GasCavity::restore_seal}
+  void
+  GasCavity::restore_seal(const std::vector<double> &state)
+  {
+    AssertThrow(state.size() == 2 && state[0] > 0. && state[1] > 0.,
+                ExcMessage("The checkpoint holds no sealed gas (" +
+                           std::to_string(state.size()) +
+                           " values), but this run has a gas cavity."));
+    sealed_volume = state[0];
+    sealed_mass   = state[1];
+  }
+
+
+
   // @sect4{GasCavity::mass}
   //
   // $m_0$ plus the integral of the rate on the fixed grid, kept as it is

@@ -188,6 +188,25 @@ namespace SoftRobot
 
 
   template <int dim>
+  std::vector<double>
+  PneumaticLoad<dim>::gas_seal() const
+  {
+    return gas ? gas->sealed_state() : std::vector<double>();
+  }
+
+
+
+  template <int dim>
+  void
+  PneumaticLoad<dim>::restore_gas_seal(const std::vector<double> &state)
+  {
+    if (gas)
+      gas->restore_seal(state);
+  }
+
+
+
+  template <int dim>
   void
   PneumaticLoad<dim>::add_cell_contribution(CellContribution<dim> &local) const
   {

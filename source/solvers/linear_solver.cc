@@ -384,8 +384,8 @@ namespace SoftRobot
             // iterations with a wrong update.
             SolverGMRES<TrilinosWrappers::MPI::Vector> gmres(
               control,
-              SolverGMRES<TrilinosWrappers::MPI::Vector>::AdditionalData(
-                30, true));
+              SolverGMRES<TrilinosWrappers::MPI::Vector>::AdditionalData(30,
+                                                                         true));
             gmres.solve(*prepared_matrix, solution, rhs, *amg_preconditioner);
           }
       }
