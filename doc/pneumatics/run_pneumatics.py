@@ -2,7 +2,8 @@
 # SPDX-License-Identifier: LGPL-2.1-or-later
 """Pneumatic actuation of the bellows (Dragon Skin 20, quarter model,
 baseline parameter set): experiment 1 released from a soft vacuum at three
-levels against the half-weight hold, and the inflation of the hanging
+levels against the half-weight hold (and for Dragon Skin 30 and Ecoflex
+00-50 at the level of their scenes), and the inflation of the hanging
 actuator, its static elongation-pressure curve and the dynamic response
 to a ramp, hold and vent. Writes doc/pneumatics.md and
 doc/figures/pneumatics_elongation.png.
@@ -14,6 +15,8 @@ Cases:
 - vacuum_<level>: parameters/bellows/vacuum_release_ds20_3d.prm with the
   vacuum level (kPa) 1.5, 2.74 (the scene's) and 4, 5.25 s;
 - hold: parameters/bellows/vertical_ds20_3d.prm, the half-weight hold;
+- vacuum_<silicone>, hold_<silicone>: the same for ds30 and ef50
+  (vacuum_release_<silicone>_3d.prm at its own level, vertical_<silicone>_3d.prm);
 - static_<p>: the static equilibrium of parameters/bellows/
   inflation_ds20_3d.prm at the constant gauge pressure p (0 to 12 kPa);
 - inflation: the scene itself (ramp to 8 kPa in 1 s, hold 1 s, vent);
@@ -79,6 +82,14 @@ CASES = [(f"vacuum_{level}", VACUUM_SCENE, f"vacuum release, {level} kPa",
           [f"Loads and constraints/Function constants=hold=1.1397, vacuum={level}"],
           "release") for level in LEVELS]
 CASES.append(("hold", HOLD_SCENE, "half-weight hold (958.4 mN)", [], "release"))
+# the other silicones: the vacuum release at the level of their scene
+# (the one that holds the tip where the half-weight hold does) and the hold
+OTHER_SILICONES = {"ds30": ("Dragon Skin 30", 5.57, 0.035), "ef50": ("Ecoflex 00-50", 2.05, 0.041)}
+for key, (silicone, _, _) in OTHER_SILICONES.items():
+    CASES.append((f"vacuum_{key}", f"parameters/bellows/vacuum_release_{key}_3d.prm",
+                  f"{silicone}: vacuum release", [], "release"))
+    CASES.append((f"hold_{key}", f"parameters/bellows/vertical_{key}_3d.prm",
+                  f"{silicone}: half-weight hold", [], "release"))
 CASES += [(f"static_{p}", INFLATION_SCENE, f"static, {p} kPa",
            [f"Pneumatics/Pressure={p}", "Time integration/End time=0.01",
             "Initial conditions/Load steps=8"], "static") for p in PRESSURES]
@@ -283,6 +294,27 @@ def write_report(path, results, session):
             f"{fmt(r.get('xi_half_power'), 3)} | {fmt(r.get('f_fit'), 5)} | "
             f"{fmt(r.get('xi_fit'), 4)} | {fmt(r.get('balance_end'), 4)} | "
             f"{r['measured_seconds']:.0f} |")
+    others = [(key, by_name.get(f"vacuum_{key}"), by_name.get(f"hold_{key}"))
+              for key in OTHER_SILICONES]
+    others = [o for o in others if o[1] is not None or o[2] is not None]
+    if others:
+        lines += ["", "The other silicones, each released from the vacuum level of its scene "
+                  "(`parameters/bellows/vacuum_release_<silicone>_3d.prm`) and from the "
+                  "half-weight hold; the same quantities.", "",
+                  "| case | status | u0 (mm) | half amplitude (mm) | f peak (Hz) "
+                  "| ξ half-power | f fit (Hz) | ξ fit | B (µJ) | wall (s) | measured f (Hz), ξ |",
+                  "|---|---|---|---|---|---|---|---|---|---|---|"]
+        for key, *runs in others:
+            _, frequency, ratio = OTHER_SILICONES[key]
+            for r in runs:
+                if r is None:
+                    continue
+                lines.append(
+                    f"| {r['label']} | {r.get('status')} | {fmt(r.get('u0'), 4)} | "
+                    f"{fmt(r.get('amplitude'), 4)} | {fmt(r.get('f_peak'), 4)} | "
+                    f"{fmt(r.get('xi_half_power'), 3)} | {fmt(r.get('f_fit'), 5)} | "
+                    f"{fmt(r.get('xi_fit'), 4)} | {fmt(r.get('balance_end'), 4)} | "
+                    f"{r['measured_seconds']:.0f} | {frequency:g}, {ratio:g} |")
     lines += ["", "## Inflation: the static curve", "",
               "Static equilibria of `parameters/bellows/inflation_ds20_3d.prm` "
               "(hanging under gravity, the gauge pressure p on the cavity wall). "
