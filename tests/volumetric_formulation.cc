@@ -15,7 +15,6 @@
 #include <cmath>
 #include <core/soft_robot_dynamics.h>
 #include <gtest/gtest.h>
-#include <random>
 
 using namespace dealii;
 using namespace SoftRobot;
@@ -61,23 +60,6 @@ namespace
     return parameter_text(dim, sections.str());
   }
 
-  // A displacement of amplitude `amplitude` with random nodal values (fixed
-  // seed), zero at the constrained dofs.
-  template <int dim>
-  TrilinosWrappers::MPI::Vector
-  random_displacement(const Simulation<dim> &body,
-                      const double           amplitude,
-                      const unsigned int     seed)
-  {
-    TrilinosWrappers::MPI::Vector    u(body.displacement());
-    std::mt19937                     generator(seed);
-    std::uniform_real_distribution<> uniform(-amplitude, amplitude);
-    for (types::global_dof_index i = 0; i < u.size(); ++i)
-      u[i] = body.get_constraints().is_constrained(i) ? 0. : uniform(generator);
-    u.compress(VectorOperation::insert);
-    return u;
-  }
-
   // Central differences of the energy along w against f . w, and of the
   // force along w against K w: the relative errors.
   template <int dim>
@@ -120,8 +102,8 @@ namespace
     body.make_grid();
     body.setup_system();
     // Strains of about 10 %: large enough for every nonlinear term.
-    const TrilinosWrappers::MPI::Vector u = random_displacement(body, 0.03, 1);
-    const TrilinosWrappers::MPI::Vector w = random_displacement(body, 1., 2);
+    const TrilinosWrappers::MPI::Vector u    = random_vector(body, 0.03, 1);
+    const TrilinosWrappers::MPI::Vector w    = random_vector(body, 1., 2);
     const auto [energy_error, tangent_error] = linearisation_errors(body, u, w);
     std::cout << dim << "D, " << (simplices ? "simplices" : "hypercubes")
               << ", p = " << degree << ", " << formulation
@@ -205,8 +187,7 @@ TEST(MeanDilatation, EqualsDisplacementFormulationOnLinearTetrahedra)
                          MPI_COMM_WORLD);
       body.make_grid();
       body.setup_system();
-      const TrilinosWrappers::MPI::Vector u =
-        random_displacement(body, 0.03, 1);
+      const TrilinosWrappers::MPI::Vector u = random_vector(body, 0.03, 1);
       forces.emplace_back(u);
       energies.push_back(body.internal_force(u, forces.back()));
     }

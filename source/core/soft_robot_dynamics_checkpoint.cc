@@ -11,9 +11,40 @@
 #include <core/config.h>
 #include <core/soft_robot_dynamics.h>
 #include <sstream>
+#include <string>
+#include <utility>
+#include <vector>
 
 namespace SoftRobot
 {
+  namespace
+  {
+    // The vectors a checkpoint holds, by name: the state of the HHT method,
+    // and the HHT forces the energy account's sums go on from (the
+    // pressure's only with a pneumatic load).
+    template <class State>
+    std::vector<std::pair<std::string, TrilinosWrappers::MPI::Vector *>>
+    checkpoint_vectors(State                         &current,
+                       TrilinosWrappers::MPI::Vector &hht_damping_force,
+                       TrilinosWrappers::MPI::Vector &hht_traction_force,
+                       TrilinosWrappers::MPI::Vector *hht_pressure_force)
+    {
+      std::vector<std::pair<std::string, TrilinosWrappers::MPI::Vector *>>
+        vectors = {{"u", &current.u},
+                   {"v", &current.v},
+                   {"a", &current.a},
+                   {"internal_force", &current.internal_force},
+                   {"external_force", &current.external_force},
+                   {"damping_force", &current.damping_force},
+                   {"hht_damping_force", &hht_damping_force},
+                   {"hht_traction_force", &hht_traction_force}};
+      if (hht_pressure_force != nullptr)
+        vectors.emplace_back("hht_pressure_force", hht_pressure_force);
+      return vectors;
+    }
+  } // namespace
+
+
   // @sect4{SoftRobotDynamics::checkpoint_or_stop}
   //
   // Called after every step, when its trajectory row and fields are
@@ -96,21 +127,13 @@ namespace SoftRobot
       data.xdmf_records = xdmf_output->records();
 
     for (const auto &[name, vector] :
-         {std::make_pair("u", &current.u),
-          std::make_pair("v", &current.v),
-          std::make_pair("a", &current.a),
-          std::make_pair("internal_force", &current.internal_force),
-          std::make_pair("external_force", &current.external_force),
-          std::make_pair("damping_force", &current.damping_force),
-          std::make_pair("hht_damping_force", &hht_damping_force),
-          std::make_pair("hht_traction_force", &hht_traction_force)})
+         checkpoint_vectors(current,
+                            hht_damping_force,
+                            hht_traction_force,
+                            pneumatics ? &hht_pressure_force : nullptr))
       data.vectors[name] = Checkpoint::local_values(*vector);
     if (pneumatics)
-      {
-        data.vectors["hht_pressure_force"] =
-          Checkpoint::local_values(hht_pressure_force);
-        data.gas_seal = pneumatics->gas_seal();
-      }
+      data.gas_seal = pneumatics->gas_seal();
     // $\mathbf K_{n-1}$, from which the next step extrapolates (the next
     // step moves it to `older` and records $\mathbf K_n$ as `newer`).
     if (stiffness_history.newer)
@@ -172,35 +195,21 @@ namespace SoftRobot
     last_output_time           = data.last_output_time;
 
     for (const auto &[name, vector] :
-         {std::make_pair("u", &current.u),
-          std::make_pair("v", &current.v),
-          std::make_pair("a", &current.a),
-          std::make_pair("internal_force", &current.internal_force),
-          std::make_pair("external_force", &current.external_force),
-          std::make_pair("damping_force", &current.damping_force),
-          std::make_pair("hht_damping_force", &hht_damping_force),
-          std::make_pair("hht_traction_force", &hht_traction_force)})
+         checkpoint_vectors(current,
+                            hht_damping_force,
+                            hht_traction_force,
+                            pneumatics ? &hht_pressure_force : nullptr))
       {
         const auto values = data.vectors.find(name);
         AssertThrow(values != data.vectors.end(),
-                    ExcMessage("The checkpoint has no vector '" +
-                               std::string(name) + "'."));
+                    ExcMessage("The checkpoint has no vector '" + name + "'."));
         vector->reinit(locally_owned_dofs, mpi_communicator);
         Checkpoint::set_local_values(values->second, *vector);
       }
 
-    // The pneumatics: the HHT pressure force of the energy account, and
-    // the sealed gas, before the state's pressure is evaluated again.
+    // The sealed gas, before the state's pressure is evaluated again.
     if (pneumatics)
-      {
-        const auto values = data.vectors.find("hht_pressure_force");
-        AssertThrow(values != data.vectors.end(),
-                    ExcMessage("The checkpoint has no vector "
-                               "'hht_pressure_force'."));
-        hht_pressure_force.reinit(locally_owned_dofs, mpi_communicator);
-        Checkpoint::set_local_values(values->second, hht_pressure_force);
-        pneumatics->restore_gas_seal(data.gas_seal);
-      }
+      pneumatics->restore_gas_seal(data.gas_seal);
 
     // What the state determines, assembled again and checked.
     const TrilinosWrappers::MPI::Vector stored_internal(current.internal_force);
