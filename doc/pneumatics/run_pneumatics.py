@@ -76,6 +76,7 @@ PRESSURES = ("0", "2", "4", "6", "8", "10", "12")
 FORCES = ("500", "1000", "2000", "3000", "4000", "5000")
 TIP_AREA = 841.  # mm^2, the bottom face of the tip block (whole body)
 REDUCED_AREA = 328.  # mm^2, the Equivalent area of the reduced inflation scenes
+WORK_AREA = 392.  # mm^2, the secant dV/d(delta) of the 3D static curve, 0 to 8 kPa
 
 # name, scene, label, overrides, kind
 CASES = [(f"vacuum_{level}", VACUUM_SCENE, f"vacuum release, {level} kPa",
@@ -99,16 +100,22 @@ CASES += [(f"force_{f}", INFLATION_SCENE, f"static, end force {f} mN",
             f"Loads and constraints/Traction=(x > 99.2) ? {float(f) / TIP_AREA:.6g} : 0; 0; 0",
             "Time integration/End time=0.01", "Initial conditions/Load steps=8"],
            "static") for f in FORCES]
+REDUCED_TRACTION = {"1d": "{f}/section", "2d": "{f}/end_area; 0"}
 for reduced, scene in REDUCED_INFLATION.items():
-    traction = f"{{f}}/section" if reduced == "1d" else f"{{f}}/end_area; 0"
     CASES += [(f"force{reduced}_{f}", scene, f"static, end force {f} mN, {reduced.upper()}",
                ["Pneumatics/Pressure=0", "Loads and constraints/Traction boundary ids=1",
-                "Loads and constraints/Traction=" + traction.format(f=f),
+                "Loads and constraints/Traction=" + REDUCED_TRACTION[reduced].format(f=f),
                 "Time integration/End time=0.01", "Initial conditions/Load steps=8"],
                "static") for f in FORCES]
     CASES += [(f"static{reduced}_{p}", scene, f"static, {p} kPa, {reduced.upper()}",
                [f"Pneumatics/Pressure={p}", "Time integration/End time=0.01",
                 "Initial conditions/Load steps=8"], "static") for p in PRESSURES]
+    # the same with the work-equivalent area instead of the scene's
+    CASES += [(f"work{reduced}_{p}", scene,
+               f"static, {p} kPa, {reduced.upper()}, A = {WORK_AREA:g} mm²",
+               [f"Pneumatics/Pressure={p}", f"Pneumatics/Equivalent area={WORK_AREA:g}",
+                "Time integration/End time=0.01", "Initial conditions/Load steps=8"],
+               "static") for p in PRESSURES]
     CASES.append((f"inflation_{reduced}", scene, f"ramp, hold, vent, {reduced.upper()}",
                   [], "inflation"))
 CASES += [(f"drive_{f}", OSCILLATION_SCENE, f"drive at {f} Hz",
@@ -203,6 +210,15 @@ def fmt(value, digits=4):
     return "—" if value is None else f"{value:.{digits}g}"
 
 
+def release_row(r):
+    """A table row of a released run: the spectrum's numbers, B and the wall time."""
+    return (f"| {r['label']} | {r.get('status')} | {fmt(r.get('u0'), 4)} | "
+            f"{fmt(r.get('amplitude'), 4)} | {fmt(r.get('f_peak'), 4)} | "
+            f"{fmt(r.get('xi_half_power'), 3)} | {fmt(r.get('f_fit'), 5)} | "
+            f"{fmt(r.get('xi_fit'), 4)} | {fmt(r.get('balance_end'), 4)} | "
+            f"{r['measured_seconds']:.0f} |")
+
+
 def figure(path, by_name):
     import matplotlib
     matplotlib.use("Agg")
@@ -288,12 +304,7 @@ def write_report(path, results, session):
         r = by_name.get(name)
         if r is None:
             continue
-        lines.append(
-            f"| {r['label']} | {r.get('status')} | {fmt(r.get('u0'), 4)} | "
-            f"{fmt(r.get('amplitude'), 4)} | {fmt(r.get('f_peak'), 4)} | "
-            f"{fmt(r.get('xi_half_power'), 3)} | {fmt(r.get('f_fit'), 5)} | "
-            f"{fmt(r.get('xi_fit'), 4)} | {fmt(r.get('balance_end'), 4)} | "
-            f"{r['measured_seconds']:.0f} |")
+        lines.append(release_row(r))
     others = [(key, by_name.get(f"vacuum_{key}"), by_name.get(f"hold_{key}"))
               for key in OTHER_SILICONES]
     others = [o for o in others if o[1] is not None or o[2] is not None]
@@ -309,12 +320,7 @@ def write_report(path, results, session):
             for r in runs:
                 if r is None:
                     continue
-                lines.append(
-                    f"| {r['label']} | {r.get('status')} | {fmt(r.get('u0'), 4)} | "
-                    f"{fmt(r.get('amplitude'), 4)} | {fmt(r.get('f_peak'), 4)} | "
-                    f"{fmt(r.get('xi_half_power'), 3)} | {fmt(r.get('f_fit'), 5)} | "
-                    f"{fmt(r.get('xi_fit'), 4)} | {fmt(r.get('balance_end'), 4)} | "
-                    f"{r['measured_seconds']:.0f} | {frequency:g}, {ratio:g} |")
+                lines.append(release_row(r) + f" {frequency:g}, {ratio:g} |")
     lines += ["", "## Inflation: the static curve", "",
               "Static equilibria of `parameters/bellows/inflation_ds20_3d.prm` "
               "(hanging under gravity, the gauge pressure p on the cavity wall). "
@@ -338,16 +344,24 @@ def write_report(path, results, session):
         zero, eight = by_pressure[0.], by_pressure[8.]
         secant = (eight["volume0"] - zero["volume0"]) / (eight["u0"] - zero["u0"])
         lines += ["", f"Secant over 0 to 8 kPa: dV/dδ = {secant:.1f} mm²."]
-    def tip(r):
+    def tip(name):
+        r = by_name.get(name)
         return r["u0"] if r is not None and "u0" in r else None
 
+    def excess(values, key, added):
+        """The elongation a reduced model adds from its hanging state, against
+        the 3D model's `added`, in per cent."""
+        if values.get(key) is None or values.get(0.) is None or not added:
+            return "—"
+        return f"{100. * ((values[key] - values[0.]) / added - 1.):+.1f} %"
+
     # the force-elongation curves, the hanging state (no force) first
-    force_curves = {}
-    for d, prefix in (("3d", "force_"), ("1d", "force1d_"), ("2d", "force2d_")):
-        hanging = by_name.get("static_0" if d == "3d" else f"static{d}_0")
-        points = [(0., tip(hanging))] + [(float(f), tip(by_name.get(prefix + f)))
-                                         for f in FORCES]
-        force_curves[d] = [(f, u) for f, u in points if u is not None]
+    force_curves = {d: {0.: tip("static_0" if d == "3d" else f"static{d}_0")}
+                    | {float(f): tip(prefix + f) for f in FORCES}
+                    for d, prefix in (("3d", "force_"), ("1d", "force1d_"), ("2d", "force2d_"))}
+    curve = sorted((f, u) for f, u in force_curves["3d"].items() if u is not None)
+    volumes = [by_name.get("static_0")] + [by_name.get(f"force_{f}") for f in FORCES]
+    volumes = [r["volume0"] for r in volumes if r is not None and "volume0" in r]
     lines += ["", "## The reduced models' end load against the 3D cavity", "",
               "The end force F on the tip block (whole body, pulling along the axis, "
               "no pressure) against the tip displacement δ of the 3D model and of the "
@@ -356,43 +370,42 @@ def write_report(path, results, session):
               "the 3D model's.", "",
               "| F (mN) | δ 3D (mm) | δ 1D (mm) | δ 2D (mm) | 1D against 3D | 2D against 3D |",
               "|---|---|---|---|---|---|"]
-    curve3 = dict(force_curves["3d"])
-
-    def added_difference(d, key, reference, reference_zero, curves):
-        values = dict(curves[d])
-        if key not in values or 0. not in values or not reference - reference_zero:
-            return "—"
-        return f"{100. * ((values[key] - values[0.]) / (reference - reference_zero) - 1.):+.1f} %"
-
-    for f, u in force_curves["3d"]:
-        cells = [fmt(u, 5)] + [fmt(dict(force_curves[d]).get(f), 5) for d in ("1d", "2d")]
-        differences = [added_difference(d, f, u, curve3[0.], force_curves) if f else "—"
-                       for d in ("1d", "2d")]
-        lines.append(f"| {f:g} | " + " | ".join(cells) + " | " + " | ".join(differences) + " |")
+    for f, u in curve:
+        added = u - force_curves["3d"][0.]
+        lines.append(f"| {f:g} | {fmt(u, 5)} | "
+                     + " | ".join(fmt(force_curves[d].get(f), 5) for d in ("1d", "2d"))
+                     + " | " + " | ".join(excess(force_curves[d], f, added) if f else "—"
+                                          for d in ("1d", "2d")) + " |")
     lines += ["", "The 3D model's response to the pressure and to the end force, side by "
               "side: F_eq is the end force that gives the 3D model the elongation the "
               "pressure p gives it (interpolated linearly on the force curve above), "
-              "A_force = F_eq / p the force-equivalent area, A_work = dV/dδ the area of "
-              "the static table above. δ 1D and δ 2D are the reduced scenes' "
-              "(`parameters/bellows/inflation_ds20_1d.prm`, `inflation_ds20_2d.prm`) "
-              f"with their Equivalent area {REDUCED_AREA:g} mm²; the differences as "
-              "above.", "",
-              "| p (kPa) | δ 3D (mm) | F_eq (mN) | A_force (mm²) | δ 1D (mm) | δ 2D (mm) "
-              "| 1D against 3D | 2D against 3D |", "|---|---|---|---|---|---|---|---|"]
-    reduced = {d: [(float(p), tip(by_name.get(f"static{d}_{p}"))) for p in PRESSURES]
-               for d in REDUCED_INFLATION}
-    forces, elongations = (np.array(v) for v in zip(*force_curves["3d"])) \
-        if len(force_curves["3d"]) > 1 else (None, None)
+              "A_force = F_eq / p the force-equivalent area; ΔV is the cavity volume "
+              "under the pressure less that of the 3D model pulled to the same δ by an "
+              "end force (interpolated on the force curve). The last four columns are "
+              "the reduced scenes' (`parameters/bellows/inflation_ds20_1d.prm`, "
+              f"`inflation_ds20_2d.prm`), with their Equivalent area {REDUCED_AREA:g} mm² "
+              f"and with the work-equivalent {WORK_AREA:g} mm² (the secant dV/dδ above), "
+              "their elongation against the 3D model's as above.", "",
+              "| p (kPa) | δ 3D (mm) | F_eq (mN) | A_force (mm²) | ΔV (mm³) "
+              f"| 1D, {REDUCED_AREA:g} mm² | 2D, {REDUCED_AREA:g} mm² "
+              f"| 1D, {WORK_AREA:g} mm² | 2D, {WORK_AREA:g} mm² |",
+              "|---|---|---|---|---|---|---|---|---|"]
+    reduced = {(d, prefix): {float(p): tip(f"{prefix}{d}_{p}") for p in PRESSURES}
+               for d in REDUCED_INFLATION for prefix in ("static", "work")}
+    forces, elongations = (np.array(v) for v in zip(*curve))
+    on_force_path = len(volumes) == len(curve)
     for p, r in statics:
-        f_eq = area = None
-        if forces is not None and p > 0 and elongations[0] <= r["u0"] <= elongations[-1]:
+        f_eq = area = extra = None
+        if p > 0 and elongations[0] <= r["u0"] <= elongations[-1]:
             f_eq = float(np.interp(r["u0"], elongations, forces))
             area = f_eq / p
-        cells = [fmt(r["u0"], 5), fmt(f_eq, 4), fmt(area, 4)]
-        cells += [fmt(dict(reduced[d]).get(p), 5) for d in ("1d", "2d")]
-        differences = [added_difference(d, p, r["u0"], by_pressure[0.]["u0"], reduced)
-                       if p and 0. in by_pressure else "—" for d in ("1d", "2d")]
-        lines.append(f"| {p:g} | " + " | ".join(cells) + " | " + " | ".join(differences) + " |")
+            if on_force_path:
+                extra = r["volume0"] - float(np.interp(r["u0"], elongations, volumes))
+        added = r["u0"] - by_pressure[0.]["u0"]
+        cells = [fmt(r["u0"], 5), fmt(f_eq, 4), fmt(area, 4), fmt(extra, 4)]
+        cells += [excess(reduced[(d, prefix)], p, added) if p else "—"
+                  for prefix in ("static", "work") for d in REDUCED_INFLATION]
+        lines.append(f"| {p:g} | " + " | ".join(cells) + " |")
     runs = [(d, by_name.get("inflation" if d == "3d" else f"inflation_{d}"))
             for d in ("3d", "1d", "2d")]
     runs = [(d, r) for d, r in runs if r is not None and "u_end_of_ramp" in r]

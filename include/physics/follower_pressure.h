@@ -100,15 +100,13 @@
 // Which area? The principle of virtual work suggests $A_\text{eq} =
 // dV/d\delta$, the rate at which the cavity's volume grows with the tip's
 // elongation $\delta$, but that holds only if the cavity's shape were a
-// function of $\delta$ alone. The pressure also bulges the convolutions:
-// part of $dV$ comes from walls that move sideways, and that work goes into
-// their strain, not into the elongation. The area that gives a reduced
-// model the 3D actuator's elongation is the force-equivalent one, the end
-// force that elongates the 3D model as far as the pressure does, per unit
-// pressure. doc/pneumatics.md measures both on the 3D quarter model
-// (Dragon Skin 20): $dV/d\delta$ = 389 to 416 mm², the force-equivalent
-// area 328 to 292 mm² over 2 to 12 kPa; an end load with $dV/d\delta$
-// elongated the reduced models by a third more than the 3D model at 2 kPa.
+// function of $\delta$ alone. Under pressure the bellows' cavity holds
+// more than it does at the same elongation under an end force: part of
+// $dV$ does work on the walls, not on the elongation. The area that gives
+// a reduced model the 3D actuator's elongation is the force-equivalent
+// one, the end force that elongates the 3D model as far as the pressure
+// does, per unit pressure. doc/pneumatics.md measures both areas, and the
+// extra volume, on the 3D model (discussed in doc/pneumatics_discussion.md).
 // A gas in a reduced model sees its volume change through the same
 // $A_\text{eq}$, so with the force-equivalent area its volume grows more
 // slowly than the 3D cavity's.
