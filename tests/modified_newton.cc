@@ -158,6 +158,40 @@ TYPED_TEST(ModifiedNewtonTest, AccelerationKeepsTheMotionAndSavesIterations)
 }
 
 
+// With `Tangent update = when needed` the matrix and its factorization
+// are kept from step to step, and rebuilt only when the iterations slow
+// down; the end of a step then assembles no matrices, only the forces and
+// the viscosity of the new state (from the material tangent at the
+// points). The residual is the same, so the motion must be that of
+// Newton's method proper to the tolerance, with fewer factorizations than
+// steps and than the modified method that rebuilds every step. CG with
+// multigrid, whose operator is the kept matrix itself, must give the same
+// motion too.
+TYPED_TEST(ModifiedNewtonTest, KeptMatrixGivesTheMotionWithFewerFactorizations)
+{
+  constexpr int dim  = TypeParam::value;
+  const Run     full = swing<dim>("  set Tangent update = every iteration\n");
+  const Run     every_step = swing<dim>("  set Tangent update = every step\n");
+  const Run     kept       = swing<dim>("  set Tangent update = when needed\n");
+  const Run     kept_cg =
+    swing<dim>("  set Tangent update = when needed\n",
+               "  set Solver = CG\n  set Relative tolerance = 1e-3\n");
+  std::cout << dim << "D: " << kept.tip.size()
+            << " steps; factorizations (Newton iterations): every step "
+            << every_step.factorizations << " (" << every_step.newton_iterations
+            << "), when needed " << kept.factorizations << " ("
+            << kept.newton_iterations << "), when needed with CG "
+            << kept_cg.factorizations << " (" << kept_cg.newton_iterations
+            << "); differences to Newton's method proper "
+            << difference(full, kept) << " (direct), "
+            << difference(full, kept_cg) << " (CG)" << std::endl;
+  EXPECT_LT(difference(full, kept), 1e-9);
+  EXPECT_LT(difference(full, kept_cg), 1e-9);
+  EXPECT_LT(kept.factorizations, kept.tip.size());
+  EXPECT_LT(kept.factorizations, every_step.factorizations);
+}
+
+
 // The two sparse direct solvers factorize the same matrices, so the motion
 // must be the same to the tolerance of the Newton iterations.
 TYPED_TEST(ModifiedNewtonTest, MumpsGivesTheMotionOfKlu)

@@ -280,11 +280,13 @@ namespace SoftRobot
     struct NonlinearSolver
     {
       // 'every step' is the modified Newton method, 'every iteration'
-      // Newton's method proper (see the declaration).
+      // Newton's method proper, 'when needed' the modified Newton method
+      // with a matrix kept across steps (see the declaration).
       enum class TangentUpdate
       {
         every_step,
-        every_iteration
+        every_iteration,
+        when_needed
       };
       unsigned int  newton_max_iterations;
       double        newton_absolute_tolerance;

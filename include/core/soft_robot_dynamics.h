@@ -236,9 +236,11 @@ namespace SoftRobot
     // Everything the next time step needs of the state `current`: its
     // internal and damping forces, its stiffness (into system_matrix), its
     // damping matrix (into damping_matrix) and the viscosity of the
-    // Kelvin-Voigt damping.
+    // Kelvin-Voigt damping. Without `with_matrices` (the modified Newton
+    // method that keeps its matrix across steps) the two matrices are left
+    // alone, unless the damping force needs the damping matrix.
     AssemblyResult
-    assemble_state();
+    assemble_state(const bool with_matrices = true);
     // The damping forces that are not cell integrals, at velocity v, added
     // to `force`: the lagged damping matrix's and the mass-proportional
     // damping's; and their matrices times `factor`, added to `matrix`.
@@ -342,6 +344,11 @@ namespace SoftRobot
     // succeeds.
     TrilinosWrappers::SparseMatrix system_matrix;
     bool                           system_matrix_is_state_stiffness = false;
+    // With `Tangent update = when needed`: the step size of the effective
+    // matrix that the linear solver holds prepared, while it is the matrix
+    // of the last successful step and no assembly has written system_matrix
+    // since; zero otherwise. The next step of that size keeps it.
+    double                         kept_matrix_dt = 0.;
     TrilinosWrappers::SparseMatrix damping_matrix;
     TrilinosWrappers::SparseMatrix next_damping_matrix;
     // The stiffness matrices of the last two converged states and their

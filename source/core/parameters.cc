@@ -832,22 +832,27 @@ namespace SoftRobot
       prm.declare_entry(
         "Tangent update",
         "every step",
-        Patterns::Selection("every step|every iteration"),
+        Patterns::Selection("every step|every iteration|when needed"),
         "When the time steps' Newton method rebuilds its matrix. 'every "
         "iteration': Newton's method proper, a new tangent and a new "
         "factorization (or multigrid hierarchy) in every iteration. 'every "
         "step': the tangent of the last converged state, built and "
         "factorized once per step, for all iterations of the step (modified "
         "Newton); it is rebuilt at the current iterate when an iteration "
-        "reduces the residual by less than a factor of two. Both converge "
-        "to the same tolerance; 'every step' is several times cheaper for "
-        "smooth motions. The static equilibrium always uses 'every "
-        "iteration'.");
+        "reduces the residual by less than a factor of two. 'when needed': "
+        "as 'every step', but the matrix and its factorization are kept "
+        "from step to step as long as the iterations converge with them; "
+        "it is rebuilt at the current iterate by the same rule, and after a "
+        "failed step or a change of the step size. All three converge to "
+        "the same tolerance; 'every step' is several times cheaper than "
+        "'every iteration' for smooth motions, and 'when needed' cheaper "
+        "still when the tangent changes slowly. The static equilibrium "
+        "always uses 'every iteration'.");
       prm.declare_entry(
         "Acceleration depth",
         "2",
         Patterns::Integer(0, 10),
-        "With 'Tangent update = every step': the number of previous "
+        "With 'Tangent update = every step' or 'when needed': the number of previous "
         "iterations whose iterates and updates Anderson acceleration "
         "combines into the next step (zero turns it off). The accelerated "
         "step is taken only if it lowers the residual; the converged answer "
@@ -886,14 +891,16 @@ namespace SoftRobot
       newton_max_iterations     = prm.get_integer("Max iterations");
       newton_absolute_tolerance = prm.get_double("Absolute tolerance");
       newton_relative_tolerance = prm.get_double("Relative tolerance");
-      tangent_update        = (prm.get("Tangent update") == "every iteration")
-                                ? TangentUpdate::every_iteration
-                                : TangentUpdate::every_step;
-      acceleration_depth    = prm.get_integer("Acceleration depth");
-      tangent_extrapolation = prm.get_bool("Tangent extrapolation");
-      line_search           = prm.get_bool("Line search");
-      max_line_search_steps = prm.get_integer("Max line search steps");
-      verbose               = prm.get_bool("Verbose");
+      const std::string update  = prm.get("Tangent update");
+      tangent_update            = (update == "every iteration")
+                                    ? TangentUpdate::every_iteration
+                                  : (update == "when needed") ? TangentUpdate::when_needed
+                                                              : TangentUpdate::every_step;
+      acceleration_depth        = prm.get_integer("Acceleration depth");
+      tangent_extrapolation     = prm.get_bool("Tangent extrapolation");
+      line_search               = prm.get_bool("Line search");
+      max_line_search_steps     = prm.get_integer("Max line search steps");
+      verbose                   = prm.get_bool("Verbose");
       prm.leave_subsection();
     }
 
@@ -1431,9 +1438,15 @@ namespace SoftRobot
     std::string
     name_of(const NonlinearSolver::TangentUpdate update)
     {
-      return (update == NonlinearSolver::TangentUpdate::every_step)
-               ? "every step"
-               : "every iteration";
+      switch (update)
+        {
+          case NonlinearSolver::TangentUpdate::every_step:
+            return "every step";
+          case NonlinearSolver::TangentUpdate::when_needed:
+            return "when needed";
+          default:
+            return "every iteration";
+        }
     }
 
     std::string

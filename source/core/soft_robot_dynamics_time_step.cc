@@ -35,6 +35,8 @@ namespace SoftRobot
     TimerOutput::Scope timer_section(computing_timer,
                                      request.matrix ? "Assemble system"
                                                     : "Assemble residual");
+    if (request.matrix)
+      kept_matrix_dt = 0.;
     Assert(damping_force != nullptr || !request.second_force,
            ExcInternalError());
     Assert(!request.second_matrix || solid->has_damping() || drag,
@@ -82,14 +84,19 @@ namespace SoftRobot
   // At the state a time step starts from (and at t = 0): the stiffness,
   // the damping matrix, and the forces, with the viscosity of the
   // Kelvin-Voigt damping recorded first, so that the damping force of the
-  // state is that of the viscosity the next step keeps.
+  // state is that of the viscosity the next step keeps. The viscosity
+  // needs the material tangent at the points, but not the matrices; they
+  // are skipped when the next step keeps its matrix, unless the lagged
+  // damping matrix is part of the damping force.
   template <int dim>
   AssemblyResult
-  SoftRobotDynamics<dim>::assemble_state()
+  SoftRobotDynamics<dim>::assemble_state(const bool with_matrices)
   {
+    const bool      matrices = with_matrices || lagged_matrix;
     AssemblyRequest request;
-    request.matrix          = true;
-    request.second_matrix   = damped && (solid->has_damping() || drag);
+    request.matrix = matrices;
+    request.second_matrix =
+      matrices && damped && (solid->has_damping() || drag);
     request.second_force    = damped;
     request.store_viscosity = true;
     if (pneumatics)
@@ -100,7 +107,7 @@ namespace SoftRobot
                       request,
                       current.internal_force,
                       damped ? &current.damping_force : nullptr);
-    system_matrix_is_state_stiffness = true;
+    system_matrix_is_state_stiffness = request.matrix;
     if (request.second_matrix)
       damping_matrix.copy_from(next_damping_matrix);
     if (!damped)
@@ -594,19 +601,37 @@ namespace SoftRobot
   void
   SoftRobotDynamics<dim>::prepare_step_tangent(const double dt)
   {
+    // When the matrix is kept across steps, the end of a step assembles no
+    // matrices, and the damping matrix of $\mathbf u_n$ is assembled here
+    // with its stiffness; nor is the stiffness extrapolated, as the last
+    // two converged states' stiffnesses are not at hand.
+    const bool keep = (parameters.tangent_update ==
+                       Parameters::NonlinearSolver::TangentUpdate::when_needed);
     if (!system_matrix_is_state_stiffness)
       {
         TrilinosWrappers::MPI::Vector force(locally_owned_dofs,
                                             mpi_communicator);
+        TrilinosWrappers::MPI::Vector damping_force(force);
         if (pneumatics)
           {
             State state = previous;
             evaluate_pneumatics(previous.u, previous.time, state);
           }
-        assemble_internal_force(previous.u, true, force);
+        AssemblyRequest request;
+        request.matrix = true;
+        request.second_matrix =
+          keep && damped && (solid->has_damping() || drag);
+        request.second_force = request.second_matrix;
+        assemble_forces(previous.u,
+                        request.second_matrix ? &previous.v : nullptr,
+                        request,
+                        force,
+                        request.second_matrix ? &damping_force : nullptr);
+        if (request.second_matrix)
+          damping_matrix.copy_from(next_damping_matrix);
       }
     StiffnessHistory &history = stiffness_history;
-    if (parameters.tangent_extrapolation)
+    if (parameters.tangent_extrapolation && !keep)
       {
         if (history.newer_time != previous.time)
           {
@@ -658,11 +683,13 @@ namespace SoftRobot
     stepper.predict_displacement(
       previous.u, previous.v, previous.a, dt, current.u);
 
+    using TangentUpdate = Parameters::NonlinearSolver::TangentUpdate;
+    const bool keep = (parameters.tangent_update == TangentUpdate::when_needed);
     const bool modified =
-      (parameters.tangent_update ==
-       Parameters::NonlinearSolver::TangentUpdate::every_step);
-    if (modified)
+      keep || (parameters.tangent_update == TangentUpdate::every_step);
+    if (modified && !(keep && kept_matrix_dt == dt))
       prepare_step_tangent(dt);
+    kept_matrix_dt = 0.;
 
     const NewtonSolver::Result result = newton_solver.solve(
       current.u,
@@ -675,6 +702,10 @@ namespace SoftRobot
                             previous.pressure_force.l2_norm())
                  : current.external_force.l2_norm(),
       modified);
+    // The matrix the iterations ended with (the one prepared before the
+    // step, or the one they rebuilt) serves the next step of this size.
+    if (keep)
+      kept_matrix_dt = dt;
     counters.last_newton_iterations = result.iterations;
     counters.newton_iterations += result.iterations;
     counters.last_residual = result.residual;
@@ -788,7 +819,8 @@ namespace SoftRobot
     ++counters.steps;
     if (damped || parameters.tangent_update ==
                     Parameters::NonlinearSolver::TangentUpdate::every_step)
-      assemble_state();
+      assemble_state(parameters.tangent_update !=
+                     Parameters::NonlinearSolver::TangentUpdate::when_needed);
     step_controller.record_success(current.time);
     return true;
   }
@@ -807,7 +839,7 @@ namespace SoftRobot
     const TrilinosWrappers::MPI::Vector &,                                            \
     const bool,                                                                       \
     TrilinosWrappers::MPI::Vector &);                                                 \
-  template AssemblyResult SoftRobotDynamics<dim>::assemble_state();                   \
+  template AssemblyResult SoftRobotDynamics<dim>::assemble_state(const bool);         \
   template void           SoftRobotDynamics<dim>::add_global_damping_forces(          \
     const TrilinosWrappers::MPI::Vector &, TrilinosWrappers::MPI::Vector &) \
     const;                                                                            \

@@ -157,9 +157,13 @@ namespace SoftRobot
         local.inverted = true;
         return;
       }
+    // The material tangent, for the matrix or for the viscosity of the
+    // state that the next step starts from.
+    const bool with_tangent =
+      with_matrix || (viscous_cell(local) && local.request.store_viscosity);
     if (mean_dilatation)
-      law.evaluate_with_pressure(H, pressure.pressure, with_matrix, response);
-    else if (with_matrix)
+      law.evaluate_with_pressure(H, pressure.pressure, with_tangent, response);
+    else if (with_tangent)
       law.evaluate(H, response);
     else
       law.evaluate_stress(H, response);
@@ -189,7 +193,7 @@ namespace SoftRobot
         point.L       = &local.workspace.velocity_gradients[q];
         point.delta_E = with_matrix ? &delta_E : nullptr;
         point.material_tangent =
-          with_matrix ? &response.material_tangent : nullptr;
+          with_tangent ? &response.material_tangent : nullptr;
         viscous->add_point_contribution(point, local);
       }
     if (!with_matrix)
