@@ -177,13 +177,17 @@ namespace SoftRobot
             (cofactor[comp[i]] * grad_phi[i]) * JxW;
       }
 
+    // The force $\int\delta\mathbf E_i:\mathbf S = \int\mathbf
+    // f_{c_i}\cdot\mathbf S\nabla_0\varphi_i$ with the first Piola-Kirchhoff
+    // stress $\mathbf P = \mathbf F\mathbf S$ formed once per point: a
+    // dot product per shape function.
     const SymmetricTensor<2, dim> &S = response.second_piola;
+    const Tensor<2, dim>           P = F * S;
     for (unsigned int i = 0; i < n; ++i)
       {
-        const Tensor<1, dim> f_c = F[comp[i]];
-        local.force(i) += (f_c * (S * grad_phi[i])) * JxW;
+        local.force(i) += (P[comp[i]] * grad_phi[i]) * JxW;
         if (with_matrix)
-          delta_E[i] = symmetrize(outer_product(f_c, grad_phi[i]));
+          delta_E[i] = symmetrize(outer_product(F[comp[i]], grad_phi[i]));
       }
     if (viscous_cell(local))
       {

@@ -29,7 +29,7 @@ namespace SoftRobot
   // @sect4{KelvinVoigtDamping::add_point_contribution}
   //
   // The force $\int\delta\mathbf E_i:\mathbf S_v$ is computed as for the
-  // elastic stress, $\int\mathbf f_{c_i}\cdot\mathbf S_v\nabla_0\varphi_i$.
+  // elastic stress, $\int(\mathbf F\mathbf S_v)_{c_i}\cdot\nabla_0\varphi_i$.
   // The damping matrix $\zeta\,\delta\mathbf E_i:\mathcal C^+:\delta\mathbf
   // E_j$ is the same product, in the same order, as that of the
   // stiffness-proportional damping matrix of HyperelasticSolid.
@@ -58,8 +58,9 @@ namespace SoftRobot
     const Tensor<2, dim>         &L     = *point.L;
     const SymmetricTensor<2, dim> E_dot = symmetrize(transpose(F) * L);
     const SymmetricTensor<2, dim> S_v   = zeta * (D * E_dot);
+    const Tensor<2, dim>          P_v   = F * S_v;
     for (unsigned int i = 0; i < n; ++i)
-      local.second_force(i) += (F[comp[i]] * (S_v * grad_phi[i])) * JxW;
+      local.second_force(i) += (P_v[comp[i]] * grad_phi[i]) * JxW;
 
     const bool with_matrix  = local.request.matrix;
     const bool with_damping = local.request.second_matrix;
