@@ -28,6 +28,9 @@
 //   method extrapolates the next step's matrix (SoftRobotDynamics::
 //   prepare_step_tangent()), its values in the order of the matrix's
 //   sparsity pattern;
+// - with `Tangent update = when needed`, the matrix the next step keeps
+//   (its values, its step size and the gas's rank-one term on it), which
+//   the restart factorizes again;
 // - the length of the trajectory file and the records of the field output
 //   (the outputs so far and the time of the next one).
 //
@@ -96,7 +99,7 @@ namespace SoftRobot
   struct CheckpointData
   {
     // What the checkpoint must agree with.
-    unsigned int  format_version = 2;
+    unsigned int  format_version = 3;
     unsigned int  dimension      = 0;
     unsigned int  n_processes    = 0;
     unsigned int  rank           = 0;
@@ -138,6 +141,14 @@ namespace SoftRobot
     // and mass at sealing; empty without a gas.
     std::vector<double> gas_seal;
 
+    // With `Tangent update = when needed`: the step size of the matrix the
+    // next step keeps (zero if it builds its own), the matrix's values and
+    // the coefficient of the gas's rank-one term on it (its vector is among
+    // `vectors`).
+    double              kept_matrix_dt = 0.;
+    std::vector<double> kept_matrix;
+    double              kept_rank_one_factor = 0.;
+
     template <class Archive>
     void
     serialize(Archive &archive, const unsigned int /*version*/)
@@ -151,8 +162,9 @@ namespace SoftRobot
       archive &trajectory_length &next_output_time &last_output_time
         &pvd_records &xdmf_records;
       archive &vectors &has_older_stiffness &older_stiffness_time
-              &older_stiffness;
-      archive &gas_seal;
+                                           &older_stiffness;
+      archive                              &gas_seal;
+      archive &kept_matrix_dt &kept_matrix &kept_rank_one_factor;
     }
   };
 

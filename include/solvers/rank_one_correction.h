@@ -54,6 +54,18 @@ namespace SoftRobot
       return coefficient > 0.;
     }
 
+    // The term's vector and coefficient (for a checkpoint).
+    const TrilinosWrappers::MPI::Vector &
+    vector() const
+    {
+      return g;
+    }
+    double
+    factor() const
+    {
+      return coefficient;
+    }
+
     // After solver.prepare(S): $\mathbf z = \mathbf S^{-1}\mathbf g$ and
     // the denominator; returns the linear iterations of that solve.
     unsigned int

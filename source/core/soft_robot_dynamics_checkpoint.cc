@@ -144,6 +144,20 @@ namespace SoftRobot
           Checkpoint::local_values(*stiffness_history.newer);
       }
 
+    // The matrix the next step keeps, so that a restarted run iterates as
+    // the uninterrupted one.
+    if (kept_matrix_dt > 0.)
+      {
+        data.kept_matrix_dt = kept_matrix_dt;
+        data.kept_matrix    = Checkpoint::local_values(system_matrix);
+        if (rank_one.active())
+          {
+            data.kept_rank_one_factor = rank_one.factor();
+            data.vectors["kept rank-one vector"] =
+              Checkpoint::local_values(rank_one.vector());
+          }
+      }
+
     Checkpoint::write(Checkpoint::directory_of(parameters.output_directory),
                       data,
                       mpi_communicator);
@@ -233,6 +247,28 @@ namespace SoftRobot
         Checkpoint::set_local_values(data.older_stiffness,
                                      *stiffness_history.newer);
         stiffness_history.newer_time = data.older_stiffness_time;
+      }
+    // The kept matrix of the interrupted run, prepared again: the
+    // factorization of the same values is the same, and the counters are
+    // those of the interrupted run.
+    if (data.kept_matrix_dt > 0.)
+      {
+        Checkpoint::set_local_values(data.kept_matrix, system_matrix);
+        if (data.kept_rank_one_factor > 0.)
+          {
+            TrilinosWrappers::MPI::Vector g(locally_owned_dofs,
+                                            mpi_communicator);
+            Checkpoint::set_local_values(
+              data.vectors.at("kept rank-one vector"), g);
+            rank_one.set(g, data.kept_rank_one_factor);
+          }
+        else
+          rank_one.clear();
+        prepare_linear_solver();
+        linear_solver.set_n_preparations(data.factorizations);
+        counters.linear_iterations       = data.linear_iterations;
+        system_matrix_is_state_stiffness = false;
+        kept_matrix_dt                   = data.kept_matrix_dt;
       }
     previous = current;
 
