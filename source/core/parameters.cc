@@ -845,9 +845,9 @@ namespace SoftRobot
         "it is rebuilt at the current iterate by the same rule, and after a "
         "failed step or a change of the step size. All three converge to "
         "the same tolerance; 'every step' is several times cheaper than "
-        "'every iteration' for smooth motions, and 'when needed' cheaper "
-        "still when the tangent changes slowly. The static equilibrium "
-        "always uses 'every iteration'.");
+        "'every iteration' for smooth motions, and 'when needed' saves the "
+        "matrices and factorizations of the steps that converge with the "
+        "old one. The static equilibrium always uses 'every iteration'.");
       prm.declare_entry(
         "Acceleration depth",
         "2",
@@ -891,16 +891,19 @@ namespace SoftRobot
       newton_max_iterations     = prm.get_integer("Max iterations");
       newton_absolute_tolerance = prm.get_double("Absolute tolerance");
       newton_relative_tolerance = prm.get_double("Relative tolerance");
-      const std::string update  = prm.get("Tangent update");
-      tangent_update            = (update == "every iteration")
-                                    ? TangentUpdate::every_iteration
-                                  : (update == "when needed") ? TangentUpdate::when_needed
-                                                              : TangentUpdate::every_step;
-      acceleration_depth        = prm.get_integer("Acceleration depth");
-      tangent_extrapolation     = prm.get_bool("Tangent extrapolation");
-      line_search               = prm.get_bool("Line search");
-      max_line_search_steps     = prm.get_integer("Max line search steps");
-      verbose                   = prm.get_bool("Verbose");
+      // The entry is one of the names of name_of() (the pattern checks it).
+      const std::string update = prm.get("Tangent update");
+      tangent_update           = TangentUpdate::every_step;
+      for (const TangentUpdate value : {TangentUpdate::every_step,
+                                        TangentUpdate::every_iteration,
+                                        TangentUpdate::when_needed})
+        if (update == name_of(value))
+          tangent_update = value;
+      acceleration_depth    = prm.get_integer("Acceleration depth");
+      tangent_extrapolation = prm.get_bool("Tangent extrapolation");
+      line_search           = prm.get_bool("Line search");
+      max_line_search_steps = prm.get_integer("Max line search steps");
+      verbose               = prm.get_bool("Verbose");
       prm.leave_subsection();
     }
 

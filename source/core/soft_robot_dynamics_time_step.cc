@@ -17,6 +17,18 @@
 
 namespace SoftRobot
 {
+  namespace
+  {
+    // Whether the modified Newton method keeps its matrix across steps.
+    bool
+    keeps_matrix(const Parameters::NonlinearSolver &parameters)
+    {
+      return parameters.tangent_update ==
+             Parameters::NonlinearSolver::TangentUpdate::when_needed;
+    }
+  } // namespace
+
+
   // @sect4{SoftRobotDynamics::assemble_forces}
   //
   // The physics of every cell -- HyperelasticSolid's, then the drag on the
@@ -605,30 +617,29 @@ namespace SoftRobot
     // matrices, and the damping matrix of $\mathbf u_n$ is assembled here
     // with its stiffness; nor is the stiffness extrapolated, as the last
     // two converged states' stiffnesses are not at hand.
-    const bool keep = (parameters.tangent_update ==
-                       Parameters::NonlinearSolver::TangentUpdate::when_needed);
+    const bool keep = keeps_matrix(parameters);
     if (!system_matrix_is_state_stiffness)
       {
         TrilinosWrappers::MPI::Vector force(locally_owned_dofs,
                                             mpi_communicator);
-        TrilinosWrappers::MPI::Vector damping_force(force);
         if (pneumatics)
           {
             State state = previous;
             evaluate_pneumatics(previous.u, previous.time, state);
           }
-        AssemblyRequest request;
-        request.matrix = true;
-        request.second_matrix =
-          keep && damped && (solid->has_damping() || drag);
-        request.second_force = request.second_matrix;
-        assemble_forces(previous.u,
-                        request.second_matrix ? &previous.v : nullptr,
-                        request,
-                        force,
-                        request.second_matrix ? &damping_force : nullptr);
-        if (request.second_matrix)
-          damping_matrix.copy_from(next_damping_matrix);
+        if (keep && damped && (solid->has_damping() || drag))
+          {
+            TrilinosWrappers::MPI::Vector damping_force(force);
+            AssemblyRequest               request;
+            request.matrix        = true;
+            request.second_matrix = true;
+            request.second_force  = true;
+            assemble_forces(
+              previous.u, &previous.v, request, force, &damping_force);
+            damping_matrix.copy_from(next_damping_matrix);
+          }
+        else
+          assemble_internal_force(previous.u, true, force);
       }
     StiffnessHistory &history = stiffness_history;
     if (parameters.tangent_extrapolation && !keep)
@@ -683,10 +694,10 @@ namespace SoftRobot
     stepper.predict_displacement(
       previous.u, previous.v, previous.a, dt, current.u);
 
-    using TangentUpdate = Parameters::NonlinearSolver::TangentUpdate;
-    const bool keep = (parameters.tangent_update == TangentUpdate::when_needed);
+    const bool keep = keeps_matrix(parameters);
     const bool modified =
-      keep || (parameters.tangent_update == TangentUpdate::every_step);
+      keep || (parameters.tangent_update ==
+               Parameters::NonlinearSolver::TangentUpdate::every_step);
     if (modified && !(keep && kept_matrix_dt == dt))
       prepare_step_tangent(dt);
     kept_matrix_dt = 0.;
@@ -819,8 +830,7 @@ namespace SoftRobot
     ++counters.steps;
     if (damped || parameters.tangent_update ==
                     Parameters::NonlinearSolver::TangentUpdate::every_step)
-      assemble_state(parameters.tangent_update !=
-                     Parameters::NonlinearSolver::TangentUpdate::when_needed);
+      assemble_state(!keeps_matrix(parameters));
     step_controller.record_success(current.time);
     return true;
   }
