@@ -61,7 +61,13 @@ namespace SoftRobot
   template <int dim>
   struct CellWorkspace
   {
+    // The gradients of the cell's shape functions, [q][i] (see
+    // CellGeometry::cell_gradients()).
+    std::vector<Tensor<1, dim>>          shape_gradients;
     std::vector<SymmetricTensor<2, dim>> delta_E;
+    // $\operatorname{sym}(\mathbf L_{c_j}\otimes\nabla_0\varphi_j)$ of the
+    // viscous stress's non-symmetric tangent (see KelvinVoigtDamping).
+    std::vector<SymmetricTensor<2, dim>> delta_rate;
     std::vector<Tensor<2, dim>>          displacement_gradients;
     std::vector<Tensor<2, dim>>          velocity_gradients;
     Vector<double>                       volume_gradient;

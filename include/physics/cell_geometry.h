@@ -9,7 +9,18 @@
 // FEValues::reinit(), which for linear tetrahedra would take about a third
 // of their time. A vector-valued shape function $\mathbf N_i = \varphi_i\mathbf
 // e_{c_i}$ of the FESystem has one nonzero component $c_i$; only the
-// gradient of $\varphi_i$ is stored.
+// gradient of $\varphi_i$ is needed.
+//
+// Every cell has the same shape functions on the reference cell, so the
+// gradients at point q of a cell are $\nabla_0\varphi_i =
+// \mathbf J_q^{-T}\hat\nabla\varphi_i(\hat{\mathbf x}_q)$, with the
+// Jacobian $\mathbf J_q$ of the mapping at that point. What is stored per
+// point is $\mathbf J_q^{-1}$ and the weight; the reference gradients are
+// stored once. cell_gradients() forms a cell's gradients when an integral
+// over it begins: a few kilobytes that the integral then reads from the
+// cache several times, where storing them for every cell would make each
+// assembly stream some megabytes (for the quadratic tetrahedra of the
+// bellows) from main memory.
 //
 // The cells are numbered in the order in which a loop over the locally
 // owned cells of the DoFHandler visits them; every per-cell array of the
@@ -52,19 +63,21 @@ namespace SoftRobot
     std::vector<unsigned int> components;
     // Per cell: the global dof indices, [cell][i].
     std::vector<types::global_dof_index> dof_indices;
-    // Per cell and point: the gradients of the scalar shape functions,
-    // [cell][q][i], and the weight times the section factor, [cell][q].
-    std::vector<Tensor<1, dim>> shape_gradients;
+    // Per reference point: the gradients of the scalar shape functions on
+    // the reference cell, [q][i].
+    std::vector<Tensor<1, dim>> reference_gradients;
+    // Per cell and point: the inverse Jacobian of the mapping, [cell][q],
+    // and the weight times the section factor, [cell][q].
+    std::vector<Tensor<2, dim>> inverse_jacobians;
     std::vector<double>         JxW;
     // Per cell: its material id.
     std::vector<types::material_id> material_ids;
 
-    // The gradients of the shape functions at point q of a cell.
-    const Tensor<1, dim> *
-    gradients(const unsigned int cell, const unsigned int q) const
-    {
-      return &shape_gradients[(cell * n_q_points + q) * dofs_per_cell];
-    }
+    // The gradients of the shape functions at every point of a cell,
+    // [q][i] (`gradients` is resized to n_q_points * dofs_per_cell).
+    void
+    cell_gradients(const unsigned int           cell,
+                   std::vector<Tensor<1, dim>> &gradients) const;
 
     // The weight of point q of a cell (times the section factor).
     double

@@ -145,11 +145,12 @@ namespace SoftRobot
     }
 
     // The cell's displacement gradients at its quadrature points, from
-    // its nodal values (also used for the velocity gradients).
+    // its nodal values and its shape-function gradients [q][i] (also used
+    // for the velocity gradients).
     void
-    displacement_gradients(const unsigned int           cell,
-                           const double                *cell_u,
-                           std::vector<Tensor<2, dim>> &H) const;
+    displacement_gradients(const std::vector<Tensor<1, dim>> &grad_phi,
+                           const double                      *cell_u,
+                           std::vector<Tensor<2, dim>>       &H) const;
 
     // The condensed pressure of the mean-dilatation formulation.
     struct CellPressure

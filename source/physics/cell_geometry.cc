@@ -26,10 +26,15 @@ namespace SoftRobot
     for (unsigned int i = 0; i < dofs_per_cell; ++i)
       components.push_back(fe.system_to_component_index(i).first);
 
+    for (unsigned int q = 0; q < n_q_points; ++q)
+      for (unsigned int i = 0; i < dofs_per_cell; ++i)
+        reference_gradients.push_back(
+          fe.shape_grad_component(i, quadrature.point(q), components[i]));
+
     FEValues<dim>                        fe_values(mapping,
                             fe,
                             quadrature,
-                            update_gradients | update_JxW_values);
+                            update_inverse_jacobians | update_JxW_values);
     std::vector<types::global_dof_index> cell_dofs(dofs_per_cell);
     for (const auto &cell : dof_handler.active_cell_iterators())
       if (cell->is_locally_owned())
@@ -43,13 +48,37 @@ namespace SoftRobot
           for (unsigned int q = 0; q < n_q_points; ++q)
             {
               JxW.push_back(fe_values.JxW(q) * factor);
-              for (unsigned int i = 0; i < dofs_per_cell; ++i)
-                shape_gradients.push_back(
-                  fe_values.shape_grad_component(i, q, components[i]));
+              inverse_jacobians.push_back(
+                Tensor<2, dim>(fe_values.inverse_jacobian(q)));
             }
           material_ids.push_back(cell->material_id());
           ++n_cells;
         }
+  }
+
+
+
+  // @sect4{CellGeometry::cell_gradients}
+  //
+  // $(\nabla_0\varphi_i)_k = \sum_l \hat\partial_l\varphi_i\,
+  // (\mathbf J^{-1})_{lk}$, the transformation FEValues applies.
+  template <int dim>
+  void
+  CellGeometry<dim>::cell_gradients(
+    const unsigned int           cell,
+    std::vector<Tensor<1, dim>> &gradients) const
+  {
+    gradients.resize(n_q_points * dofs_per_cell);
+    for (unsigned int q = 0; q < n_q_points; ++q)
+      {
+        const Tensor<2, dim> &inverse =
+          inverse_jacobians[cell * n_q_points + q];
+        const Tensor<1, dim> *reference =
+          &reference_gradients[q * dofs_per_cell];
+        Tensor<1, dim> *result = &gradients[q * dofs_per_cell];
+        for (unsigned int i = 0; i < dofs_per_cell; ++i)
+          result[i] = reference[i] * inverse;
+      }
   }
 
 

@@ -60,20 +60,17 @@ namespace SoftRobot
   template <int dim>
   void
   HyperelasticSolid<dim>::displacement_gradients(
-    const unsigned int           cell,
-    const double                *cell_u,
-    std::vector<Tensor<2, dim>> &H) const
+    const std::vector<Tensor<1, dim>> &grad_phi,
+    const double                      *cell_u,
+    std::vector<Tensor<2, dim>>       &H) const
   {
     const unsigned int               n_q  = geometry.n_q_points;
     const unsigned int               n    = geometry.dofs_per_cell;
     const std::vector<unsigned int> &comp = geometry.components;
     H.assign(n_q, Tensor<2, dim>());
     for (unsigned int q = 0; q < n_q; ++q)
-      {
-        const Tensor<1, dim> *grad_phi = geometry.gradients(cell, q);
-        for (unsigned int i = 0; i < n; ++i)
-          H[q][comp[i]] += cell_u[i] * grad_phi[i];
-      }
+      for (unsigned int i = 0; i < n; ++i)
+        H[q][comp[i]] += cell_u[i] * grad_phi[q * n + i];
   }
 
 
@@ -138,14 +135,14 @@ namespace SoftRobot
     MaterialResponse<dim> &response,
     CellContribution<dim> &local) const
   {
-    const unsigned int               cell         = local.cell;
-    const unsigned int               n            = geometry.dofs_per_cell;
-    const std::vector<unsigned int> &comp         = geometry.components;
-    const Tensor<1, dim>            *grad_phi     = geometry.gradients(cell, q);
-    const double                     JxW          = geometry.weight(cell, q);
-    const NeoHookeanEnergy<dim>     &law          = *cell_law[cell];
-    const bool                       with_matrix  = local.request.matrix;
-    std::vector<SymmetricTensor<2, dim>> &delta_E = local.workspace.delta_E;
+    const unsigned int               cell = local.cell;
+    const unsigned int               n    = geometry.dofs_per_cell;
+    const std::vector<unsigned int> &comp = geometry.components;
+    const Tensor<1, dim> *grad_phi = &local.workspace.shape_gradients[q * n];
+    const double          JxW      = geometry.weight(cell, q);
+    const NeoHookeanEnergy<dim>          &law         = *cell_law[cell];
+    const bool                            with_matrix = local.request.matrix;
+    std::vector<SymmetricTensor<2, dim>> &delta_E     = local.workspace.delta_E;
 
     Tensor<2, dim> F = H;
     for (unsigned int d = 0; d < dim; ++d)
@@ -246,10 +243,12 @@ namespace SoftRobot
     const unsigned int n    = geometry.dofs_per_cell;
     const unsigned int cell = local.cell;
     local.workspace.delta_E.resize(n);
+    std::vector<Tensor<1, dim>> &grad_phi = local.workspace.shape_gradients;
+    geometry.cell_gradients(cell, grad_phi);
     std::vector<Tensor<2, dim>> &H = local.workspace.displacement_gradients;
-    displacement_gradients(cell, local.input_values[0], H);
+    displacement_gradients(grad_phi, local.input_values[0], H);
     if (viscous_cell(local))
-      displacement_gradients(cell,
+      displacement_gradients(grad_phi,
                              local.input_values[1],
                              local.workspace.velocity_gradients);
     const bool rate_gradient =
@@ -300,8 +299,10 @@ namespace SoftRobot
   HyperelasticSolid<dim>::cell_averages(const unsigned int cell,
                                         const double      *cell_u) const
   {
+    std::vector<Tensor<1, dim>> grad_phi;
+    geometry.cell_gradients(cell, grad_phi);
     std::vector<Tensor<2, dim>> H;
-    displacement_gradients(cell, cell_u, H);
+    displacement_gradients(grad_phi, cell_u, H);
     const NeoHookeanEnergy<dim> &law      = *cell_law[cell];
     double                       pressure = 0.;
     if (mean_dilatation)

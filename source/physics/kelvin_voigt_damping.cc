@@ -45,8 +45,9 @@ namespace SoftRobot
       return;
     const unsigned int               n    = geometry.dofs_per_cell;
     const std::vector<unsigned int> &comp = geometry.components;
-    const Tensor<1, dim>    *grad_phi     = geometry.gradients(cell, point.q);
-    const double             JxW          = geometry.weight(cell, point.q);
+    const Tensor<1, dim>            *grad_phi =
+      &local.workspace.shape_gradients[point.q * n];
+    const double             JxW = geometry.weight(cell, point.q);
     SymmetricTensor<4, dim> &D =
       viscosity[cell * geometry.n_q_points + point.q];
     if (local.request.store_viscosity)
@@ -70,6 +71,16 @@ namespace SoftRobot
     const std::vector<SymmetricTensor<2, dim>> &dE = *point.delta_E;
     const double c_v          = local.request.velocity_coefficient;
     const bool   nonsymmetric = with_matrix && !symmetric_tangent;
+    // The rate's variation by shape function j, formed once per point
+    // instead of once per pair (i, j).
+    std::vector<SymmetricTensor<2, dim>> &delta_rate =
+      local.workspace.delta_rate;
+    if (nonsymmetric)
+      {
+        delta_rate.resize(n);
+        for (unsigned int j = 0; j < n; ++j)
+          delta_rate[j] = symmetrize(outer_product(L[comp[j]], grad_phi[j]));
+      }
     for (unsigned int i = 0; i < n; ++i)
       {
         const SymmetricTensor<2, dim> D_dE_i       = D * dE[i];
@@ -88,11 +99,12 @@ namespace SoftRobot
               }
           }
         if (nonsymmetric)
-          for (unsigned int j = 0; j < n; ++j)
-            local.workspace.nonsymmetric_matrix(i, j) +=
-              zeta *
-              (D_dE_i * symmetrize(outer_product(L[comp[j]], grad_phi[j]))) *
-              JxW;
+          {
+            const double factor = zeta * JxW;
+            for (unsigned int j = 0; j < n; ++j)
+              local.workspace.nonsymmetric_matrix(i, j) +=
+                factor * (D_dE_i * delta_rate[j]);
+          }
       }
     if (nonsymmetric)
       local.workspace.has_nonsymmetric_part = true;
@@ -190,8 +202,9 @@ namespace SoftRobot
               Tensor<2, dim> F = local.workspace.displacement_gradients[q];
               for (unsigned int d = 0; d < dim; ++d)
                 F[d][d] += 1.;
-              const Tensor<1, dim> *grad_phi = geometry.gradients(cell, q);
-              const double          w        = p_v * geometry.weight(cell, q);
+              const Tensor<1, dim> *grad_phi =
+                &local.workspace.shape_gradients[q * n];
+              const double w = p_v * geometry.weight(cell, q);
               for (unsigned int i = 0; i < n; ++i)
                 for (unsigned int j = 0; j < i; ++j)
                   if (comp[i] != comp[j])
