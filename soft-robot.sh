@@ -33,6 +33,9 @@
 #                              the inflation (static curve and ramp, hold,
 #                              vent) and a sinusoidal pressure drive, and
 #                              write doc/pneumatics.md
+#   ./soft-robot.sh reference  build in Release, run experiment 1 with quadratic
+#                              tetrahedra (mean dilatation) over time steps,
+#                              meshes and silicones and write doc/reference.md
 #
 # Build directories: build-release/ and build-debug/ beside this script.
 set -euo pipefail
@@ -98,7 +101,7 @@ case "${1:-}" in
     build Release build-release -DSOFT_ROBOT_BUILD_TESTS=OFF
     /usr/bin/python3 doc/locking/run_locking.py build-release "${@:2}"
     ;;
-  stability|error-vs-runtime|twisting-column|damping|pneumatics)
+  stability|error-vs-runtime|twisting-column|damping|pneumatics|reference)
     packages+=(python3-numpy python3-matplotlib)
     install_missing_packages
     build Release build-release -DSOFT_ROBOT_BUILD_TESTS=OFF
@@ -143,7 +146,7 @@ case "${1:-}" in
     echo "Wrote doc/validation.md"
     ;;
   *)
-    echo "Usage: $0 demo|test|validate|benchmark|stability|locking|error-vs-runtime|twisting-column" >&2
+    echo "Usage: $0 demo|test|validate|benchmark|stability|locking|error-vs-runtime|twisting-column|damping|pneumatics|reference" >&2
     exit 2
     ;;
 esac
