@@ -221,7 +221,23 @@ def write_report(path, results, session):
                         f"{b['spectrum']['f']:.5f} Hz | "
                         f"{percent(a['spectrum']['xi'], b['spectrum']['xi'])} | "
                         f"{percent(a['volume'], b['volume'])} |")
-    lines += ["", "A change is that of the coarser level relative to the finer one."]
+    lines += ["", "A change is that of the coarser level relative to the finer one.",
+              "", "Against the finest mesh run with the same silicone and step:", "",
+              "| silicone | dt s | mesh | against | error of f | error of ξ |",
+              "|---|---:|---|---|---:|---:|"]
+    for silicone in SILICONES:
+        for dt in (0.01, 0.005):
+            runs = [(level, by_name.get(f"{silicone}_{level}_dt{dt:g}"))
+                    for level in LEVELS]
+            runs = [(level, r) for level, r in runs if r]
+            if len(runs) < 3:
+                continue
+            finest_level, finest = runs[-1]
+            for level, r in runs[:-1]:
+                lines.append(
+                    f"| {SILICONES[silicone]} | {dt:g} | {level} | {finest_level} | "
+                    f"{percent(r['spectrum']['f'], finest['spectrum']['f'])} | "
+                    f"{percent(r['spectrum']['xi'], finest['spectrum']['xi'])} |")
     write_with_discussion_link(path, lines, "reference_discussion.md")
 
 
