@@ -17,10 +17,9 @@
 // Jacobian $\mathbf J_q$ of the mapping at that point. What is stored per
 // point is $\mathbf J_q^{-1}$ and the weight; the reference gradients are
 // stored once. cell_gradients() forms a cell's gradients when an integral
-// over it begins: a few kilobytes that the integral then reads from the
-// cache several times, where storing them for every cell would make each
-// assembly stream some megabytes (for the quadratic tetrahedra of the
-// bellows) from main memory.
+// over it begins. This stores dim^2 numbers per point instead of dim per
+// shape function (30 of them for quadratic tetrahedra), and costs no
+// measurable time (doc/performance_discussion.md, item 28).
 //
 // The cells are numbered in the order in which a loop over the locally
 // owned cells of the DoFHandler visits them; every per-cell array of the
