@@ -54,6 +54,10 @@ DefineConstant[
   // flat tetrahedra, and which mesher does best varies from mesh to mesh, so
   // generate_meshes.sh fixes it per mesh.
   SurfaceAlgorithm = {6, Choices{1, 5, 6}, Name "Parameters/Surface mesher"},
+  // 1: linear tetrahedra. 2: 10-node tetrahedra, whose mid-edge nodes gmsh
+  // places on the curved surfaces (the program reads them as a curved
+  // geometry, include/core/curved_geometry.h).
+  ElementOrder = {1, Choices{1, 2}, Name "Parameters/Element order"},
   // Write the section polygon as "x,r" lines to SectionFile and stop
   // before building any solid (used by check_geometry.py).
   ExportSection = {0, Choices{0, 1}, Name "Parameters/Export section"},
@@ -410,7 +414,11 @@ Physical Surface("block_outer", 5) = {BlockOuter[]};
 Physical Surface("silicone_outer", 6) = {BodyOuter[]};
 
 // @sect3{Mesh options}
-// Linear tetrahedra only (the program raises the order itself), one largest
+// Linear tetrahedra unless ElementOrder = 2 (the program raises the order
+// of the displacement itself; second-order nodes only curve the geometry).
+// Curving the edges of a thin wall's tetrahedra can invert one; gmsh's
+// elastic analogy followed by its optimizer (HighOrderOptimize 2) untangles
+// the meshes of generate_meshes.sh, which checks it. One largest
 // size everywhere, single-threaded; the geometry's own short edges (the 0.5 mm chords at the
 // cavity crests and outer valleys, the 1 mm necks) refine the mesh locally by
 // themselves. Below ElementSize = 12 the section's vertices, not the size,
@@ -419,7 +427,8 @@ Physical Surface("silicone_outer", 6) = {BodyOuter[]};
 // the crests of the coarse meshes but differs from run to run even on one
 // thread. Written as MSH 2.2 ASCII with only the physical groups, which is
 // what deal.II's GridIn::read_msh reads.
-Mesh.ElementOrder = 1;
+Mesh.ElementOrder = ElementOrder;
+Mesh.HighOrderOptimize = 2;
 Mesh.MeshSizeMax = ElementSize;
 Mesh.MeshSizeMin = 0;
 Mesh.MeshSizeFromCurvature = 0;

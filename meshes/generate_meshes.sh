@@ -18,6 +18,12 @@
 #   fine    element size 3 mm, the wall thickness.
 #   extrafine  element size 2 mm, the quarter model only (the largest
 #           committed mesh of the benchmark's refinement series).
+#   coarse-curved, medium-curved  the quarter model's coarse and medium
+#           cells as 10-node tetrahedra, their mid-edge nodes on the curved
+#           surfaces (not committed; the reference study writes them). The
+#           medium one uses the Frontal-Delaunay surface mesher, with which
+#           gmsh untangles every curved tetrahedron (with Delaunay, one
+#           stays inverted).
 #   ultrafine  element size 1 mm, the quarter model only, about 87,000
 #           unknowns with linear elements: the benchmark's largest mesh. At
 #           7 MB it is not committed; the benchmark writes it when missing.
@@ -45,38 +51,46 @@ half    2 fine    3   7 5
 full    4 fine    3   7 5
 quarter 1 extrafine 2 7 5
 quarter 1 ultrafine 1 7 6
+quarter 1 coarse-curved 10.5 7 6 2
+quarter 1 medium-curved 5 7 6 2
 "
 
 only="${1:-}"
 only_level="${2:-}"
 printf "%-28s %10s %8s %10s\n" "mesh" "tets" "nodes" "triangles"
-while read -r model quarters level size circle surface; do
+while read -r model quarters level size circle surface order; do
   [ -z "$model" ] && continue
   [ -n "$only" ] && [ "$only" != "$model" ] && continue
   [ -n "$only_level" ] && [ "$only_level" != "$level" ] && continue
-  # The ultrafine mesh only when asked for by name.
-  [ "$level" = ultrafine ] && [ "$only_level" != ultrafine ] && continue
+  # The ultrafine and curved meshes only when asked for by name.
+  case "$level" in ultrafine | *-curved)
+    [ "$only_level" != "$level" ] && continue ;;
+  esac
   out="$here/bellows_${model}_${level}.msh"
   log="$(mktemp)"
   gmsh "$geo" -3 -nt 1 -format msh22 \
     -setnumber Model "$quarters" -setnumber ElementSize "$size" \
     -setnumber CircleNodes "$circle" -setnumber SurfaceAlgorithm "$surface" \
-    -o "$out" > "$log" 2>&1 || true
+    -setnumber ElementOrder "${order:-1}" -o "$out" > "$log" 2>&1 || true
   # gmsh reports errors (including those raised by bellows.geo's own checks)
   # on its log but still exits with 0.
-  if grep -q '^Error' "$log" || [ ! -s "$out" ]; then
-    grep '^Error' "$log" >&2 || true
+  # A curved mesh must leave no tetrahedron inverted ("jac. < 0" in the
+  # last report of its volume mesh).
+  if grep -q '^Error' "$log" || [ ! -s "$out" ] ||
+     grep 'volume mesh: worst distortion' "$log" | tail -1 | grep -q 'jac. < 0'; then
+    grep '^Error\|jac. < 0' "$log" >&2 || true
     echo "generate_meshes.sh: gmsh failed for $out" >&2
     rm -f "$log" "$out"
     exit 1
   fi
   rm -f "$log"
-  # Element type 4 is the linear tetrahedron, 2 the triangle (MSH 2.2).
+  # Element types 4 and 11 are the linear and 10-node tetrahedron, 2 and 9
+  # the linear and 6-node triangle (MSH 2.2).
   counts=$(awk '/^\$Nodes/ {getline; nodes = $1}
                 /^\$Elements/ {inside = 1; getline; next}
                 /^\$EndElements/ {inside = 0}
-                inside && $2 == 4 {tets++}
-                inside && $2 == 2 {tris++}
+                inside && ($2 == 4 || $2 == 11) {tets++}
+                inside && ($2 == 2 || $2 == 9) {tris++}
                 END {printf "%10d %8d %10d", tets, nodes, tris}' "$out")
   printf "%-28s %s\n" "$(basename "$out")" "$counts"
 done <<< "$meshes"

@@ -47,6 +47,7 @@
 
 #include <assembly/assembly_result.h>
 #include <assembly/system_assembler.h>
+#include <core/curved_geometry.h>
 #include <core/exceptions.h>
 #include <core/parameters.h>
 #include <core/plausibility_guard.h>
@@ -302,6 +303,9 @@ namespace SoftRobot
 
     // The discretization.
     parallel::shared::Triangulation<dim> triangulation;
+    // The positions field of a second-order mesh, which the mapping
+    // refers to (empty for a linear mesh).
+    std::unique_ptr<CurvedGeometry<dim>> curved_geometry;
     std::unique_ptr<Mapping<dim>>        mapping;
     std::unique_ptr<FESystem<dim>>       fe;
     DoFHandler<dim>                      dof_handler;

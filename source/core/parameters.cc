@@ -101,7 +101,10 @@ namespace SoftRobot
                         "A gmsh .msh file (format 2.2 or 4.1), relative to "
                         "the directory of the parameter file. Physical volume "
                         "tags become material ids, physical surface tags "
-                        "boundary ids.");
+                        "boundary ids. A format 2.2 file of second-order "
+                        "triangles or tetrahedra (gmsh -order 2) gives "
+                        "curved cells: their mid-edge nodes shape the "
+                        "geometry, whatever the Polynomial degree.");
       prm.declare_entry("Global refinements",
                         "0",
                         Patterns::Integer(0, 10),

@@ -171,9 +171,10 @@ namespace SoftRobot
   SoftRobotDynamics<dim>::make_grid()
   {
     TimerOutput::Scope timer_section(computing_timer, "Make grid");
+    MidEdgeNodes<dim>  mid_edge_nodes;
     {
       Triangulation<dim> serial;
-      create_mesh(parameters, serial);
+      create_mesh(parameters, serial, &mid_edge_nodes);
       triangulation.copy_triangulation(serial);
     }
     InputChecks::check_refinement_size(parameters,
@@ -192,8 +193,16 @@ namespace SoftRobot
                                : (simplex_mesh ? p : p + 1);
     if (simplex_mesh)
       {
-        fe      = std::make_unique<FESystem<dim>>(FE_SimplexP<dim>(p), dim);
-        mapping = std::make_unique<MappingFE<dim>>(FE_SimplexP<dim>(1));
+        fe = std::make_unique<FESystem<dim>>(FE_SimplexP<dim>(p), dim);
+        if (mid_edge_nodes.empty())
+          mapping = std::make_unique<MappingFE<dim>>(FE_SimplexP<dim>(1));
+        else
+          {
+            curved_geometry =
+              std::make_unique<CurvedGeometry<dim>>(triangulation,
+                                                    mid_edge_nodes);
+            mapping = curved_geometry->create_mapping();
+          }
         cell_quadrature = std::make_unique<QGaussSimplex<dim>>(n_q);
         mass_quadrature = std::make_unique<QGaussSimplex<dim>>(p + 1);
         face_quadrature = std::make_unique<QGaussSimplex<dim - 1>>(p + 1);
@@ -212,7 +221,11 @@ namespace SoftRobot
 
     pcout << "Mesh: " << triangulation.n_global_active_cells() << ' '
           << (simplex_mesh ? "simplex" : "hypercube") << " cells, "
-          << n_materials << " material(s)" << std::endl;
+          << n_materials << " material(s)";
+    if (curved_geometry)
+      pcout << ", curved (second order, mid-edge nodes up to "
+            << curved_geometry->largest_offset() << " from the straight edges)";
+    pcout << std::endl;
   }
 
 
