@@ -84,7 +84,12 @@ def study_main(description, script, output, report, cases, run_case, load_case,
         # meanwhile (two studies on the two cores).
         session = (json.loads(session_path.read_text()) if session_path.exists()
                    else {"runs": []})
-        session["runs"] = (session["runs"] if arguments.cases else []) + [run]
+        # An earlier run whose cases this one has all run again no longer
+        # produced any row of the report.
+        kept = [earlier for earlier in session["runs"]
+                if arguments.cases and earlier.get("cases")
+                and not set(earlier["cases"]) <= set(run["cases"])]
+        session["runs"] = kept + [run]
         session_path.write_text(json.dumps(session, indent=1) + "\n")
     results = [r for r in (load_case(output_root, name) for name in cases) if r]
     write_report(REPOSITORY / arguments.report, results, session)

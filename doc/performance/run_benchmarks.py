@@ -134,6 +134,8 @@ CASES = [
      "exp. 1 DS20 quarter, coarse P2 mean dilatation, 5.25 s"),
     ("p2md_headline_kept", HEADLINE, P2MD + KEPT, 1,
      "the same, matrix kept across steps, Newton tolerance 1e-6"),
+    ("p2md_headline_kept_1_thread", HEADLINE, P2MD + KEPT, 1,
+     "the same with one thread (DEAL_II_NUM_THREADS=1)"),
     ("headline_kept", HEADLINE, KEPT, 1,
      "the headline, matrix kept across steps, Newton tolerance 1e-6"),
     ("planar_3d", "parameters/bellows/planar_ds20_3d.prm", [], 1,
