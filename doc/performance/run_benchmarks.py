@@ -323,9 +323,14 @@ def machine_description():
 
 
 def commit():
+    """The commit the run starts from, with "+ changes" when tracked files
+    differ from it (the run then used code that no commit holds)."""
     try:
-        return subprocess.run(["git", "rev-parse", "--short", "HEAD"], cwd=REPOSITORY,
+        head = subprocess.run(["git", "rev-parse", "--short", "HEAD"], cwd=REPOSITORY,
                               capture_output=True, text=True).stdout.strip()
+        changed = subprocess.run(["git", "diff", "--quiet", "HEAD"],
+                                 cwd=REPOSITORY).returncode != 0
+        return head + (" + changes" if changed else "")
     except OSError:
         return "unknown"
 
