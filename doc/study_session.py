@@ -84,11 +84,11 @@ def study_main(description, script, output, report, cases, run_case, load_case,
         # meanwhile (two studies on the two cores).
         session = (json.loads(session_path.read_text()) if session_path.exists()
                    else {"runs": []})
-        # An earlier run whose cases this one has all run again no longer
-        # produced any row of the report.
+        # An earlier run whose cases this one has all run again produces no
+        # row of the report any more (a run without --cases ran them all).
         kept = [earlier for earlier in session["runs"]
-                if arguments.cases and earlier.get("cases")
-                and not set(earlier["cases"]) <= set(run["cases"])]
+                if arguments.cases
+                and not set(earlier.get("cases") or cases) <= set(run["cases"])]
         session["runs"] = kept + [run]
         session_path.write_text(json.dumps(session, indent=1) + "\n")
     results = [r for r in (load_case(output_root, name) for name in cases) if r]
