@@ -36,6 +36,10 @@
 #   ./soft-robot.sh reference  build in Release, run experiment 1 with quadratic
 #                              tetrahedra (mean dilatation) over time steps,
 #                              meshes and silicones and write doc/reference.md
+#   ./soft-robot.sh swing-reference
+#                              the same for experiments 2 and 3 (the planar and
+#                              the spherical pendulum); writes
+#                              doc/reference_swing.md
 #
 # Build directories: build-release/ and build-debug/ beside this script.
 set -euo pipefail
@@ -108,6 +112,12 @@ case "${1:-}" in
     script=${1//-/_}
     /usr/bin/python3 "doc/$script/run_$script.py" build-release "${@:2}"
     ;;
+  swing-reference)
+    packages+=(python3-numpy python3-matplotlib)
+    install_missing_packages
+    build Release build-release -DSOFT_ROBOT_BUILD_TESTS=OFF
+    /usr/bin/python3 doc/reference/run_swing_reference.py build-release "${@:2}"
+    ;;
   validate)
     packages+=(python3-matplotlib python3-numpy)
     install_missing_packages
@@ -146,7 +156,7 @@ case "${1:-}" in
     echo "Wrote doc/validation.md"
     ;;
   *)
-    echo "Usage: $0 demo|test|validate|benchmark|stability|locking|error-vs-runtime|twisting-column|damping|pneumatics|reference" >&2
+    echo "Usage: $0 demo|test|validate|benchmark|stability|locking|error-vs-runtime|twisting-column|damping|pneumatics|reference|swing-reference" >&2
     exit 2
     ;;
 esac
