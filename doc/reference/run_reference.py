@@ -63,8 +63,7 @@ SOLVER = ["Finite element/Polynomial degree=2",
           "Nonlinear solver/Relative tolerance=1e-6",
           "Nonlinear solver/Absolute tolerance=0",
           "Nonlinear solver/Acceleration depth=5",
-          "Output/Progress interval=0", "Output/Write VTU=false",
-          f"Time integration/End time={RECORD:g}"]
+          "Output/Progress interval=0", "Output/Write VTU=false"]
 
 # name, silicone key, mesh level, time step
 CASES = ([("ds20_coarse_dt" + f"{dt:g}", "ds20", "coarse", dt)
@@ -97,7 +96,8 @@ def overrides(name, level, dt):
     # the answer does not depend on the direct solver.
     solver = (["Linear solver/Direct solver=MUMPS"] if level.startswith("extrafine")
               else [])
-    return SOLVER + solver + [f"Geometry/Mesh file={MESHES}_{level}.msh",
+    return SOLVER + solver + [f"Time integration/End time={RECORD:g}",
+                              f"Geometry/Mesh file={MESHES}_{level}.msh",
                               f"Time integration/Time step={dt:g}"] + EXTRA.get(name, [])
 
 
@@ -135,27 +135,34 @@ def ensure_mesh(level):
                         "quarter", level], check=True)
 
 
-def run_case(build, output_root, name, timeout, threads):
-    _, silicone, level, dt = next(c for c in CASES if c[0] == name)
-    ensure_mesh(level)
-    output = output_root / name
+def run_scene(build, output, name, scene, entries, timeout, threads, read_spectrum):
+    """One run of `scene` with the `--set` entries into a fresh `output`;
+    writes its result.json (the run, the spectrum read_spectrum(output)
+    finds, the silicone volume). Shared with run_swing_reference.py."""
     if output.exists():
         shutil.rmtree(output)
     output.mkdir(parents=True)
-    scene = f"parameters/bellows/vertical_{silicone}_3d.prm"
     command = [str(build / "soft-robot"), scene,
                "--set", f"Problem/Output directory={output}"]
-    for entry in overrides(name, level, dt):
+    for entry in entries:
         command += ["--set", entry]
     environment = dict(os.environ, OMP_NUM_THREADS="1",
                        DEAL_II_NUM_THREADS=str(threads))
     print(f"[{name}]", flush=True)
     _, result = run_program(command, environment, output, timeout)
-    result["spectrum"] = read_vertical(output)
+    result["spectrum"] = read_spectrum(output)
     result["volume"] = silicone_volume(result["materials"])
     (output / "result.json").write_text(json.dumps(result))
     wall = read_statistics(output).get("wall_seconds", float("nan"))
     print(f"    {result['status']}, {wall:.1f} s, {result['spectrum']}", flush=True)
+
+
+def run_case(build, output_root, name, timeout, threads):
+    _, silicone, level, dt = next(c for c in CASES if c[0] == name)
+    ensure_mesh(level)
+    run_scene(build, output_root / name, name,
+              f"parameters/bellows/vertical_{silicone}_3d.prm",
+              overrides(name, level, dt), timeout, threads, read_vertical)
 
 
 def read_statistics(output):

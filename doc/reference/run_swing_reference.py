@@ -22,16 +22,13 @@ Nothing here is a test: the numbers are reported, not checked.
 """
 
 import csv
-import json
-import os
 import sys
 from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
-from run_reference import (REPOSITORY, SILICONES, SOLVER, load_case,  # noqa: E402
-                           percent, read_statistics, silicone_volume)
+from run_reference import (SILICONES, SOLVER, load_case, percent,  # noqa: E402
+                           run_scene)
 from run_benchmarks import write_with_discussion_link  # noqa: E402
-from run_stability import run_program  # noqa: E402
 from study_session import run_lines, study_main  # noqa: E402
 
 RECORD = 4.  # s
@@ -73,30 +70,14 @@ def read_directions(output):
 def run_case(build, output_root, name, timeout, threads):
     _, experiment, silicone, level, dt = next(c for c in CASES if c[0] == name)
     _, prefix, model, _ = EXPERIMENTS[experiment]
-    output = output_root / name
-    if output.exists():
-        for child in sorted(output.rglob("*"), reverse=True):
-            child.unlink() if child.is_file() else child.rmdir()
-    output.mkdir(parents=True, exist_ok=True)
-    command = [str(build / "soft-robot"),
-               f"parameters/bellows/{prefix}_{silicone}_3d.prm",
-               "--set", f"Problem/Output directory={output}"]
-    solver = [e for e in SOLVER if not e.startswith("Time integration/End time")]
-    for entry in solver + [
-            f"Time integration/End time={RECORD:g}",
-            f"Geometry/Mesh file=../../meshes/bellows_{model}_{level}.msh",
-            f"Time integration/Time step={dt:g}"] + (
-                ["Linear solver/Direct solver=MUMPS"] if level != "coarse" else []):
-        command += ["--set", entry]
-    environment = dict(os.environ, OMP_NUM_THREADS="1",
-                       DEAL_II_NUM_THREADS=str(threads))
-    print(f"[{name}]", flush=True)
-    _, result = run_program(command, environment, output, timeout)
-    result["spectrum"] = read_directions(output)
-    result["volume"] = silicone_volume(result["materials"])
-    (output / "result.json").write_text(json.dumps(result))
-    wall = read_statistics(output).get("wall_seconds", float("nan"))
-    print(f"    {result['status']}, {wall:.1f} s, {result['spectrum']}", flush=True)
+    entries = SOLVER + [f"Time integration/End time={RECORD:g}",
+                        f"Geometry/Mesh file=../../meshes/bellows_{model}_{level}.msh",
+                        f"Time integration/Time step={dt:g}"]
+    if level != "coarse":
+        entries.append("Linear solver/Direct solver=MUMPS")
+    run_scene(build, output_root / name, name,
+              f"parameters/bellows/{prefix}_{silicone}_3d.prm", entries, timeout,
+              threads, read_directions)
 
 
 def cell(r, direction, key, digits):
