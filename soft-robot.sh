@@ -91,10 +91,7 @@ case "${1:-}" in
     build Debug build-debug -DSOFT_ROBOT_BUILD_TESTS=ON
     cmake --build build-debug --target doc
     cd build-debug
-    # A failed test runs once more: Open MPI's start of a serial program
-    # can fail to create its session directory when another test's process
-    # removes it at the same moment; a real failure fails both times.
-    ctest --output-on-failure -j "$(nproc)" --repeat until-pass:2
+    ctest --output-on-failure -j "$(nproc)"
     ;;
   benchmark)
     packages+=(python3-numpy calculix-ccx openmpi-bin gmsh)

@@ -29,6 +29,7 @@
 #include <algorithm>
 #include <analysis/spectral_analysis.h>
 #include <cmath>
+#include <core/mpi_session.h>
 #include <core/parameters.h>
 #include <core/simulator_access.h>
 #include <core/soft_robot_dynamics.h>
@@ -571,6 +572,8 @@ namespace
 int
 main(int argc, char *argv[])
 {
+  // Open MPI's settings for a run without mpirun (core/mpi_session.h).
+  const SoftRobot::SerialMpiSession mpi_session;
   // Threads for the assembly: the cores divided among the MPI processes.
   Utilities::MPI::MPI_InitFinalize mpi(argc,
                                        argv,

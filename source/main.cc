@@ -23,6 +23,7 @@
 
 #include <core/exceptions.h>
 #include <core/input_checks.h>
+#include <core/mpi_session.h>
 #include <core/parameter_file.h>
 #include <core/parameters.h>
 #include <core/soft_robot_dynamics.h>
@@ -165,20 +166,9 @@ int
 main(int argc, char *argv[])
 {
   using namespace SoftRobot;
-  // A run started without mpirun is an MPI singleton, for which Open MPI
-  // starts a helper daemon (orted) that probes the machine; that costs a
-  // quarter of a second at every start and is of no use to a program that
-  // never spawns processes. Open MPI's own switch turns it off. A singleton
-  // also has no one to talk to, yet Open MPI's default message layer (UCX)
-  // probes the machine's network devices, another fifth of a second; the
-  // basic layer (ob1, with its process-to-itself transport) serves a single
-  // process just as well. Neither variable replaces a value the user set;
-  // other MPI implementations ignore them.
-  if (std::getenv("OMPI_COMM_WORLD_SIZE") == nullptr)
-    {
-      setenv("OMPI_MCA_ess_singleton_isolated", "1", /*overwrite=*/0);
-      setenv("OMPI_MCA_pml", "ob1", /*overwrite=*/0);
-    }
+  // Open MPI's settings for a run without mpirun (core/mpi_session.h);
+  // created before MPI_Init, destroyed after MPI_Finalize.
+  const SerialMpiSession mpi_session;
   // Threads for the assembly: deal.II's default, the cores of the machine
   // divided among its MPI processes (DEAL_II_NUM_THREADS limits them).
   dealii::Utilities::MPI::MPI_InitFinalize mpi(
