@@ -54,6 +54,7 @@
 #include <deal.II/fe/fe_values.h>
 #include <deal.II/grid/grid_generator.h>
 #include <deal.II/lac/affine_constraints.h>
+#include <deal.II/lac/dynamic_sparsity_pattern.h>
 #include <deal.II/lac/full_matrix.h>
 #include <deal.II/lac/solver_cg.h>
 #include <deal.II/lac/solver_control.h>
@@ -1248,4 +1249,71 @@ TYPED_TEST(LinearSolverTest, SolverNamesAreTheSolversInUse)
     factory.Create("Amesos_Mumps", problem));
   EXPECT_NE(dynamic_cast<Amesos_Klu *>(klu.get()), nullptr);
   EXPECT_NE(dynamic_cast<Amesos_Mumps *>(mumps.get()), nullptr);
+}
+
+
+
+// @sect4{The automatic choice of the direct solver}
+//
+// `Direct solver = automatic` takes KLU below LinearSolver's threshold and
+// MUMPS from it on; both solve a tridiagonal system of either size to
+// round-off.
+namespace
+{
+  void
+  set_tridiagonal(const unsigned int n, TrilinosWrappers::SparseMatrix &matrix)
+  {
+    const IndexSet         all = complete_index_set(n);
+    DynamicSparsityPattern pattern(n, n);
+    for (unsigned int i = 0; i < n; ++i)
+      for (unsigned int j = (i > 0 ? i - 1 : 0); j <= std::min(i + 1, n - 1);
+           ++j)
+        pattern.add(i, j);
+    matrix.reinit(all, all, pattern, MPI_COMM_WORLD);
+    for (unsigned int i = 0; i < n; ++i)
+      {
+        matrix.set(i, i, 4.);
+        if (i > 0)
+          matrix.set(i, i - 1, -1.);
+        if (i + 1 < n)
+          matrix.set(i, i + 1, -1.);
+      }
+    matrix.compress(VectorOperation::insert);
+  }
+} // namespace
+
+
+
+TEST(LinearSolverChoice, AutomaticDirectSolverFollowsTheSize)
+{
+  const unsigned int threshold = LinearSolver::automatic_mumps_threshold;
+  TimerOutput        timer(MPI_COMM_WORLD,
+                    std::cout,
+                    TimerOutput::never,
+                    TimerOutput::wall_times);
+  for (const auto &[n, name] :
+       {std::pair<unsigned int, std::string>{threshold - 1, "Amesos_Klu"},
+        std::pair<unsigned int, std::string>{threshold, "Amesos_Mumps"}})
+    {
+      TrilinosWrappers::SparseMatrix matrix;
+      set_tridiagonal(n, matrix);
+      const IndexSet                all = complete_index_set(n);
+      TrilinosWrappers::MPI::Vector exact(all, MPI_COMM_WORLD);
+      for (unsigned int i = 0; i < n; ++i)
+        exact(i) = std::sin(0.01 * i);
+      exact.compress(VectorOperation::insert);
+      TrilinosWrappers::MPI::Vector rhs(exact), solution(exact);
+      matrix.vmult(rhs, exact);
+
+      LinearSolver solver(solver_parameters(SolverType::direct,
+                                            DirectType::automatic),
+                          1,
+                          MPI_COMM_WORLD,
+                          timer);
+      solver.prepare(matrix);
+      EXPECT_EQ(solver.solver_in_use(), name) << n << " unknowns";
+      solver.solve(rhs, solution);
+      solution -= exact;
+      EXPECT_LT(solution.linfty_norm(), 1e-12) << n << " unknowns";
+    }
 }

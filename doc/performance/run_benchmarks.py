@@ -50,7 +50,7 @@ SERIES_LEVELS = ("coarse", "medium", "fine", "extrafine", "ultrafine")
 # several times that) and the MPI processes. Epetra's products and ML's
 # multigrid run in one thread per process, so CG with multigrid uses the
 # second core only with a second process.
-SERIES_SOLVER = {"": ([], "", SERIES_LEVELS[:4], 1),
+SERIES_SOLVER = {"": (["Linear solver/Direct solver=KLU"], "", SERIES_LEVELS[:4], 1),
                  "mumps_": (["Linear solver/Direct solver=MUMPS"],
                             ", direct solver MUMPS instead of KLU", SERIES_LEVELS, 1),
                  "amg_": (["Linear solver/Solver=CG"],

@@ -315,6 +315,7 @@ namespace SoftRobot
       };
       enum class DirectSolverType
       {
+        automatic,
         klu,
         mumps
       };

@@ -68,6 +68,10 @@ namespace SoftRobot
   class LinearSolver
   {
   public:
+    // `Direct solver = automatic` takes MUMPS for matrices of at least this
+    // many rows, KLU for smaller ones (see uses_mumps()).
+    static constexpr types::global_dof_index automatic_mumps_threshold = 10000;
+
     // The parameters are copied. The polynomial degree of the finite
     // element tells ML whether the matrix comes from higher-order elements.
     // The timer gets the sections "Factorization" (direct solvers),
@@ -138,6 +142,10 @@ namespace SoftRobot
     // @sect4{The two ways of preparing}
     bool
     uses_direct_solver() const;
+    // Whether the direct solver for a matrix of this size is MUMPS (else
+    // KLU).
+    bool
+    uses_mumps(const types::global_dof_index n_unknowns) const;
     // Whether `matrix` is the matrix object analysed last (and has kept its
     // size), so that the symbolic analysis or the aggregates can be reused.
     bool

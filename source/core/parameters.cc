@@ -924,14 +924,16 @@ namespace SoftRobot
                         "(Trilinos ML), or a sparse direct solver (Amesos, "
                         "see Direct solver) for small problems.");
       prm.declare_entry("Direct solver",
-                        "KLU",
-                        Patterns::Selection("KLU|MUMPS"),
+                        "automatic",
+                        Patterns::Selection("automatic|KLU|MUMPS"),
                         "The sparse direct solver of `Solver = Direct`, "
                         "through Trilinos Amesos: KLU (left-looking, the "
-                        "faster one on the bellows meshes up to some 20,000 "
-                        "unknowns) or MUMPS (multifrontal, for larger "
-                        "meshes and quadratic elements: twice as fast as KLU "
-                        "at 35,000 unknowns, with less memory).");
+                        "faster one on the bellows meshes below some 10,000 "
+                        "unknowns) or MUMPS (multifrontal, on an optimized "
+                        "BLAS such as OpenBLAS up to twice as fast as KLU "
+                        "from there on, with less memory). 'automatic' "
+                        "takes KLU below 10,000 unknowns and MUMPS from "
+                        "there on. Both give the same answer to round-off.");
       // The linear solves are the inner iteration of Newton's method, whose
       // own test on the true residual decides when a step has converged: a
       // linear solve only has to give a direction that is good enough.
@@ -978,9 +980,10 @@ namespace SoftRobot
       linear_solver            = (solver == "Direct") ? LinearSolverType::direct
                                  : (solver == "GMRES") ? LinearSolverType::gmres
                                                        : LinearSolverType::cg;
-      direct_solver            = (prm.get("Direct solver") == "MUMPS")
-                                   ? DirectSolverType::mumps
-                                   : DirectSolverType::klu;
+      direct_solver =
+        (prm.get("Direct solver") == "MUMPS") ? DirectSolverType::mumps
+        : (prm.get("Direct solver") == "KLU") ? DirectSolverType::klu
+                                              : DirectSolverType::automatic;
       linear_relative_tolerance = prm.get_double("Relative tolerance");
       linear_max_iterations     = prm.get_integer("Max iterations");
       smoother_sweeps           = prm.get_integer("AMG smoother sweeps");

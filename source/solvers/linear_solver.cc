@@ -111,6 +111,24 @@ namespace SoftRobot
 
 
 
+  // @sect4{LinearSolver::uses_mumps}
+  //
+  // `Direct solver = automatic` takes MUMPS from this many unknowns on, and
+  // KLU below. On the bellows meshes, with OpenBLAS, the two break even at
+  // about 8,000 unknowns of linear tetrahedra; MUMPS's factorizations are
+  // 10 % faster at 11,931 unknowns of quadratic ones and 35 % faster at
+  // 19,209 of linear ones (doc/performance_discussion.md, item 29).
+  bool
+  LinearSolver::uses_mumps(const types::global_dof_index n_unknowns) const
+  {
+    using Type = Parameters::LinearSolver::DirectSolverType;
+    return parameters.direct_solver == Type::mumps ||
+           (parameters.direct_solver == Type::automatic &&
+            n_unknowns >= automatic_mumps_threshold);
+  }
+
+
+
   bool
   LinearSolver::uses_direct_solver() const
   {
@@ -197,10 +215,7 @@ namespace SoftRobot
     direct_problem->SetOperator(
       const_cast<Epetra_CrsMatrix *>(&matrix.trilinos_matrix()));
     const std::string package =
-      (parameters.direct_solver ==
-       Parameters::LinearSolver::DirectSolverType::mumps)
-        ? "Amesos_Mumps"
-        : "Amesos_Klu";
+      uses_mumps(matrix.m()) ? "Amesos_Mumps" : "Amesos_Klu";
     Amesos factory;
     direct_factorization.reset(
       factory.Create(package.c_str(), *direct_problem));
@@ -208,8 +223,7 @@ namespace SoftRobot
                 ExcMessage("Trilinos has no " + package +
                            " solver (Linear solver/Direct solver)."));
     direct_solver_name = package;
-    if (parameters.direct_solver ==
-        Parameters::LinearSolver::DirectSolverType::klu)
+    if (!uses_mumps(matrix.m()))
       {
         Teuchos::ParameterList amesos_parameters;
         amesos_parameters.set("Refactorize", true);
