@@ -29,11 +29,14 @@ namespace SoftRobot
     unsigned int  mpi_processes                 = 0;
     unsigned int  threads_per_process           = 0;
     std::string   linear_solver;
-    std::string   tangent_update;
-    double        end_time          = 0.;
-    unsigned int  steps             = 0;
-    unsigned int  newton_iterations = 0;
-    unsigned int  linear_iterations = 0;
+    // The solver prepared last ("Amesos_Klu", "Amesos_Mumps", "CG with
+    // ML", ...): what `Direct solver = automatic` chose.
+    std::string  solver_in_use;
+    std::string  tangent_update;
+    double       end_time          = 0.;
+    unsigned int steps             = 0;
+    unsigned int newton_iterations = 0;
+    unsigned int linear_iterations = 0;
     // Matrix factorizations or multigrid set-ups.
     unsigned int factorizations = 0;
     unsigned int cutbacks       = 0;

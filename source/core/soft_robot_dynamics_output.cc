@@ -421,6 +421,7 @@ namespace SoftRobot
       Utilities::MPI::n_mpi_processes(mpi_communicator);
     statistics.threads_per_process = MultithreadInfo::n_threads();
     statistics.linear_solver  = Parameters::name_of(parameters.linear_solver);
+    statistics.solver_in_use  = linear_solver.solver_in_use();
     statistics.tangent_update = Parameters::name_of(parameters.tangent_update);
     statistics.end_time       = current.time;
     statistics.steps          = counters.steps;

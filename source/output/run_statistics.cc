@@ -29,6 +29,7 @@ namespace SoftRobot
     json["mpi_processes"]                 = mpi_processes;
     json["threads_per_process"]           = threads_per_process;
     json["linear_solver"]                 = linear_solver;
+    json["solver_in_use"]                 = solver_in_use;
     json["tangent_update"]                = tangent_update;
     json["end_time"]                      = end_time;
     json["steps"]                         = steps;
