@@ -12,8 +12,8 @@
 //   process-to-itself transport) serves a single process just as well;
 // - every isolated singleton of a user puts its session directory at the
 //   same path, `<tmpdir>/ompi.<host>.<uid>/jf.0/...`, and removes it when
-//   it ends. Two runs at once (the validation and reference scripts run two
-//   scenes at a time, ctest two tests) then share it, and one run's
+//   it ends. Two runs at once (the validation script runs two scenes at a
+//   time, ctest two tests) then share it, and one run's
 //   clean-up can remove the directory while the other creates its own
 //   files in it: that run fails at its start ("mkdir ... No such file or
 //   directory" from `orte_session_dir`). Each singleton therefore gets a
