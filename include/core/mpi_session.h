@@ -26,7 +26,10 @@
 // None of the variables replaces a value the user set, and nothing is
 // changed under mpirun (which sets OMPI_COMM_WORLD_SIZE); other MPI
 // implementations ignore them. If the private directory cannot be made,
-// Open MPI's default applies.
+// Open MPI's default applies. A process killed by a signal (SIGKILL, or an
+// abort that skips the destructors) leaves its directory behind, with the
+// few empty directories Open MPI made in it, as Open MPI's own session
+// directory would be left without this object.
 //
 // Implemented in source/core/mpi_session.cc.
 
