@@ -14,7 +14,8 @@ of each timed section, peak memory); this script adds the tip frequency
 from `tip_spectrum.csv` and the wall time it measured itself, and prints
 one table. Cases marked "window" run only the first part of the motion
 (their cost per step is what they measure; a tip frequency needs the whole
-record). The peer, CalculiX, runs the headline case through
+record). The peer, CalculiX, runs the headline case (linear tetrahedra,
+C3D4) and the quadratic one (p2md_headline_kept, C3D10) through
 calculix_peer.py in the same session.
 
 Nothing here is a test: the numbers depend on the machine, and they are
@@ -68,6 +69,12 @@ KEPT = ["Nonlinear solver/Tangent update=when needed",
         "Nonlinear solver/Relative tolerance=1e-6",
         "Nonlinear solver/Absolute tolerance=0",
         "Nonlinear solver/Acceleration depth=5"]
+
+# The refinement series of the quadratic discretisation (P2MD + KEPT): the
+# quarter model's coarse, medium and fine meshes (11,931 to about 55,000
+# unknowns; the extrafine one would need about 140,000), the first 0.25 s
+# each, the static equilibrium included.
+P2MD_SERIES_LEVELS = SERIES_LEVELS[:3]
 
 # name, scene, overrides, MPI processes, description
 CASES = [
@@ -136,6 +143,14 @@ CASES = [
      "the same, matrix kept across steps, Newton tolerance 1e-6"),
     ("p2md_headline_kept_1_thread", HEADLINE, P2MD + KEPT, 1,
      "the same with one thread (DEAL_II_NUM_THREADS=1)"),
+] + [
+    (f"p2md_quarter_{level}_window", HEADLINE,
+     [f"Geometry/Mesh file=../../meshes/bellows_quarter_{level}.msh",
+      "Time integration/End time=0.25", "Output/Spectral analysis=false"] + P2MD + KEPT, 1,
+     f"{level} quarter mesh, quadratic elements with mean dilatation, matrix kept "
+     f"across steps, first 0.25 s")
+    for level in P2MD_SERIES_LEVELS
+] + [
     ("headline_kept", HEADLINE, KEPT, 1,
      "the headline, matrix kept across steps, Newton tolerance 1e-6"),
     ("planar_3d", "parameters/bellows/planar_ds20_3d.prm", [], 1,
@@ -298,16 +313,39 @@ def run_case_once(build, output_root, case, reuse=False, label=""):
     return statistics
 
 
+# The peers: our case, the element degree of calculix_peer.py, the
+# directory of its output (under the benchmark's output).
+PEERS = (("headline", 1, "calculix_peer"), ("p2md_headline_kept", 2, "calculix_peer_c3d10"))
+
+
 def run_calculix(output_root):
-    workdir = output_root / "calculix_peer"
-    command = [sys.executable, str(REPOSITORY / "doc/performance/calculix_peer.py"),
-               "--workdir", str(workdir)]
-    print("[calculix] the headline case with CalculiX (1 thread)", flush=True)
-    result = subprocess.run(command, cwd=REPOSITORY, capture_output=True, text=True)
-    if result.returncode != 0:
-        print(result.stdout[-2000:] + result.stderr[-2000:])
-        return None
-    return json.loads((workdir / "calculix_peer.json").read_text())
+    """Runs the peers; returns {our case: the peer's calculix_peer.json}."""
+    peers = {}
+    for case, degree, directory in PEERS:
+        workdir = output_root / directory
+        command = [sys.executable, str(REPOSITORY / "doc/performance/calculix_peer.py"),
+                   "--workdir", str(workdir), "--degree", str(degree)]
+        ours = output_root / case / "tip_trajectory.csv"
+        if ours.exists():
+            command += ["--compare", str(ours)]
+        print(f"[calculix] the case {case} with CalculiX (degree {degree}, 1 thread)",
+              flush=True)
+        result = subprocess.run(command, cwd=REPOSITORY, capture_output=True, text=True)
+        if result.returncode != 0:
+            print(result.stdout[-2000:] + result.stderr[-2000:])
+            continue
+        peers[case] = json.loads((workdir / "calculix_peer.json").read_text())
+    return peers
+
+
+def read_calculix(output_root):
+    """The peers' results of the last run (for --report-only)."""
+    peers = {}
+    for case, _, directory in PEERS:
+        path = output_root / directory / "calculix_peer.json"
+        if path.exists():
+            peers[case] = json.loads(path.read_text())
+    return peers
 
 
 def machine_description():
@@ -403,35 +441,115 @@ def write_report(path, results, calculix, run):
             f"times: {', '.join(f'{t:.2f}' for t in repeats['process_seconds'])} s; "
             f"the program's wall times: "
             f"{', '.join(f'{t:.2f}' for t in repeats['wall_seconds'])} s.\n")
-    lines.append("## Against the reference and the peer\n")
-    lines.append("Our times here are those of the whole process (\"process s\" "
-                 "above: start-up and the spectral analysis included), as "
-                 "CalculiX's are.\n")
-    lines.append("| case | this program s | reference s | speed-up |")
-    lines.append("|---|---:|---:|---:|")
-    for name, reference in REFERENCE_SECONDS.items():
-        if name in by_name:
+    peers = [(case, calculix[case]) for case, _, _ in PEERS
+             if calculix and case in calculix and case in by_name]
+    references = [name for name in REFERENCE_SECONDS if name in by_name]
+    if references or peers:
+        lines.append("## Against the reference and the peer\n")
+        lines.append("Our times here are those of the whole process (\"process s\" "
+                     "above: start-up and the spectral analysis included), as "
+                     "CalculiX's are.\n")
+    if references:
+        lines.append("| case | this program s | reference s | speed-up |")
+        lines.append("|---|---:|---:|---:|")
+        for name in references:
             ours = by_name[name]["measured_seconds"]
+            reference = REFERENCE_SECONDS[name]
             lines.append(f"| {name} | {ours:.2f} | {reference:.0f} (4 threads) "
                          f"| {reference / ours:.0f}x |")
-    lines.append("")
-    if calculix and "headline" in by_name:
-        ours = by_name["headline"]
+        lines.append("")
+    if peers:
+        version = peers[0][1]["ccx_version"]
         lines.append(
-            f"CalculiX {calculix['ccx_version']} on the headline case (same mesh, "
-            f"material, damping coefficient, time step, HHT alpha and duration; "
-            f"{calculix['threads']} thread): **{calculix['wall_seconds']:.2f} s**, "
-            f"tip frequency {calculix['f_peak_Hz']:.4f} Hz, peak memory "
-            f"{calculix['peak_memory_MiB']:.0f} MiB, {calculix['dynamic_iterations']} "
-            f"Newton iterations in {calculix['dynamic_increments']} increments. "
-            f"This program: {ours['measured_seconds']:.2f} s (process), tip "
-            f"frequency {ours['tip'][0]:.4f} Hz, {ours['newton_iterations']} "
-            f"Newton iterations (ratio CalculiX / this program: "
-            f"{calculix['wall_seconds'] / ours['measured_seconds']:.2f}).\n")
-        lines.append("Differences of the peer's model (from calculix_peer.py):\n")
-        for caveat in calculix["caveats"]:
+            f"CalculiX {version} on the same cases (same mesh and element degree, "
+            f"material, damping coefficient, time step, HHT alpha and duration; one "
+            f"thread). Tip frequency: the vertical FFT peak of the tip's mean "
+            f"displacement, by calculix_peer.py's estimator for both programs.\n")
+        lines.append("| case | elements | CalculiX s | this program s | ratio | CalculiX "
+                     "Newton iterations | ours | CalculiX f (Hz) | our f (Hz) | "
+                     "difference | CalculiX peak MiB |")
+        lines.append("|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|")
+        for case, peer in peers:
+            ours = by_name[case]
+            our_f = peer.get("ours", {}).get("f_peak_Hz")
+            lines.append(
+                f"| {case} | {peer['element_type']} | {peer['wall_seconds']:.2f} | "
+                f"{ours['measured_seconds']:.2f} | "
+                f"{peer['wall_seconds'] / ours['measured_seconds']:.2f} | "
+                f"{peer['dynamic_iterations']} | {ours['newton_iterations']} | "
+                f"{peer['f_peak_Hz']:.4f} | "
+                + (f"{our_f:.4f} | {100 * (peer['f_peak_Hz'] / our_f - 1):+.2f} % | "
+                   if our_f else "– | – | ")
+                + f"{peer['peak_memory_MiB']:.0f} |")
+        lines.append("")
+        lines.append("Differences of the peers' models (from calculix_peer.py):\n")
+        caveats = []
+        for _, peer in peers:
+            caveats += [c for c in peer["caveats"] if c not in caveats]
+        for caveat in caveats:
             lines.append(f"- {caveat}")
         lines.append("")
+
+    p2md_series = [(level, by_name[f"p2md_quarter_{level}_window"])
+                   for level in P2MD_SERIES_LEVELS if f"p2md_quarter_{level}_window" in by_name]
+    if len(p2md_series) >= 2:
+        lines.append("## Cost per time step over the quadratic refinement series\n")
+        lines.append("Quadratic tetrahedra in the mean-dilatation formulation, the "
+                     "matrix kept across steps (the settings of `p2md_headline_kept`), "
+                     "on the quarter model's coarse, medium and fine gmsh meshes, the "
+                     "first 0.25 s each with the static equilibrium. Per time step: "
+                     "the time of the assemblies, the solver set-ups and the solves "
+                     "divided by the steps, and the exponent p of t ~ N^p from the "
+                     "mesh before; the Newton iterations and the factorizations per "
+                     "step, the linear solves per Newton iteration (one back "
+                     "substitution each with the direct solver), the direct solver "
+                     "that `automatic` chose, and the peak memory per unknown.\n")
+        lines.append("| mesh | dofs | ms per step | exponent | assembly ms | set-up ms | "
+                     "solve ms | Newton/step | factorizations/step | solves per Newton "
+                     "iteration | solver | peak MB | kB per dof |")
+        lines.append("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|---:|---:|")
+        previous = None
+        for level, r in p2md_series:
+            steps = max(r["steps"], 1)
+            work = section(r, "Assemble residual", "Assemble system", "Assemble tractions",
+                           "Factorization", "Preconditioner setup", "Linear solve")
+            per_step = 1000 * work / steps
+            exponent = ("–" if previous is None else
+                        f"{math.log(per_step / previous[1]) / math.log(r['dofs'] / previous[0]):.2f}")
+            lines.append(
+                f"| {level} | {r['dofs']} | {per_step:.1f} | {exponent} "
+                f"| {1000 * section(r, 'Assemble residual', 'Assemble system', 'Assemble tractions') / steps:.1f} "
+                f"| {1000 * section(r, 'Factorization', 'Preconditioner setup') / steps:.1f} "
+                f"| {1000 * section(r, 'Linear solve') / steps:.1f} "
+                f"| {r['newton_iterations'] / steps:.2f} "
+                f"| {r['factorizations_or_amg_setups'] / steps:.2f} "
+                f"| {r['linear_iterations'] / max(r['newton_iterations'], 1):.2f} "
+                f"| {r.get('solver_in_use', '–')} | {r['peak_memory_mb']:.0f} "
+                f"| {1024 * r['peak_memory_mb'] / r['dofs']:.1f} |")
+            previous = (r["dofs"], per_step)
+        (first_level, a), (last_level, b) = p2md_series[0], p2md_series[-1]
+
+        def step_ms(r):
+            return 1000 * section(r, "Assemble residual", "Assemble system",
+                                  "Assemble tractions", "Factorization",
+                                  "Preconditioner setup", "Linear solve") / max(r["steps"], 1)
+
+        log_n = math.log(b["dofs"] / a["dofs"])
+        parts = []
+        for label, names in (("assembly", ("Assemble residual", "Assemble system",
+                                           "Assemble tractions")),
+                             ("factorizations", ("Factorization", "Preconditioner setup")),
+                             ("solves", ("Linear solve",))):
+            ta, tb = section(a, *names) / a["steps"], section(b, *names) / b["steps"]
+            if ta > 0 and tb > 0:
+                parts.append(f"{label} N^{math.log(tb / ta) / log_n:.2f}")
+        lines.append(
+            f"\nFrom the {first_level} to the {last_level} mesh the cost per step grows "
+            f"like N^{math.log(step_ms(b) / step_ms(a)) / log_n:.2f}; by part: "
+            + ", ".join(parts) + ". The peak memory beyond the coarse mesh's grows by "
+            f"{1024 * (b['peak_memory_mb'] - a['peak_memory_mb']) / (b['dofs'] - a['dofs']):.1f} "
+            "kB per added unknown (the per-unknown column above includes the libraries "
+            "and the process's fixed memory).\n")
 
     def per_cg_iteration(s):
         """Nanoseconds per unknown per CG iteration (the solves' time)."""
@@ -671,8 +789,7 @@ def main():
     results = [(case[0], case[4], run_case(build, output_root, case, arguments.report_only))
                for case in selected]
     if arguments.report_only:
-        peer = output_root / "calculix_peer" / "calculix_peer.json"
-        calculix = json.loads(peer.read_text()) if peer.exists() else None
+        calculix = read_calculix(output_root)
     else:
         calculix = None if arguments.skip_calculix else run_calculix(output_root)
     write_report(REPOSITORY / arguments.report, results, calculix, run)
