@@ -79,7 +79,8 @@ Differences from our model (also written to the JSON file as caveats):
     quadratic tetrahedra in the pure displacement formulation, where the
     benchmark's quadratic case uses the mean-dilatation formulation
     (Finite element/Volumetric formulation); at kappa = 100 mu the
-    displacement formulation is slightly stiffer (doc/locking.md). The
+    displacement formulation locks in part: on the coarse quarter mesh our
+    own rings 7.9 % above our mean dilatation (doc/locking.md). The
     mass matrix and the gravity load are ccx's own (not necessarily the
     same quadrature as ours).
   * Tip quantity. We track the centre of mass of material 2. Here the tip
@@ -657,7 +658,8 @@ def caveats(options):
         "wall time is the whole ccx run (input, static step, dynamic step, .dat output)",
     ] + ([] if options.degree == 1 else [
         "C3D10 in the displacement formulation (ours: the same quadratic elements with mean "
-        "dilatation); at kappa = 100 mu it is slightly stiffer"])
+        "dilatation); on this mesh at kappa = 100 mu our displacement formulation rings 7.9 % "
+        "higher than our mean dilatation (2.624 against 2.432 Hz at dt 0.01 s, locking.md)"])
 
 
 # ---------------------------------------------------------------------------
