@@ -58,6 +58,11 @@ DefineConstant[
   // places on the curved surfaces (the program reads them as a curved
   // geometry, include/core/curved_geometry.h).
   ElementOrder = {1, Choices{1, 2}, Name "Parameters/Element order"},
+  // The tip block: 0 the study's box; 1 a cylinder of the same length,
+  // mass, centre of mass and tensor of inertia (radius BlockWidth /
+  // sqrt(3), see include/core/bellows_mesh.h), the block of the program's
+  // hexahedral mesh, here to measure what the block's shape changes.
+  BlockShape = {0, Choices{0 = "box", 1 = "cylinder"}, Name "Parameters/Tip block"},
   // Write the section polygon as "x,r" lines to SectionFile and stop
   // before building any solid (used by check_geometry.py).
   ExportSection = {0, Choices{0, 1}, Name "Parameters/Export section"},
@@ -322,13 +327,24 @@ For i In {0 : #RecordedFaces[] - 1}
   RecordedBoxes[] += BoundingBox Surface{RecordedFaces[i]};
 EndFor
 HalfWidth = BlockWidth / 2;
-TipBlock = newv;
-If (Model == 1)
-  Box(TipBlock) = {XEnd, 0, 0, BlockLength, HalfWidth, HalfWidth};
-ElseIf (Model == 2)
-  Box(TipBlock) = {XEnd, -HalfWidth, 0, BlockLength, BlockWidth, HalfWidth};
+If (BlockShape == 0)
+  TipBlock = newv;
+  If (Model == 1)
+    Box(TipBlock) = {XEnd, 0, 0, BlockLength, HalfWidth, HalfWidth};
+  ElseIf (Model == 2)
+    Box(TipBlock) = {XEnd, -HalfWidth, 0, BlockLength, BlockWidth, HalfWidth};
+  Else
+    Box(TipBlock) = {XEnd, -HalfWidth, -HalfWidth, BlockLength, BlockWidth, BlockWidth};
+  EndIf
 Else
-  Box(TipBlock) = {XEnd, -HalfWidth, -HalfWidth, BlockLength, BlockWidth, BlockWidth};
+  // The cylinder, revolved like the body from its rectangular section.
+  BlockSection = news;
+  Rectangle(BlockSection) = {XEnd, 0, 0, BlockLength, BlockWidth / Sqrt(3)};
+  BlockRevolved[] = Extrude {{1, 0, 0}, {0, 0, 0}, Model * Pi / 2} { Surface{BlockSection}; };
+  TipBlock = BlockRevolved[1];
+  If (Model == 4)
+    Delete { Surface{BlockSection}; }
+  EndIf
 EndIf
 BooleanFragments{ Volume{Body}; Delete; }{ Volume{TipBlock}; Delete; }
 

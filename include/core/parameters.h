@@ -49,14 +49,17 @@ namespace SoftRobot
     //
     // The mesh comes either from one of deal.II's generators, named with
     // its arguments as in GridGenerator::generate_from_name_and_arguments(),
-    // or from a gmsh file whose physical volume tags become material ids
-    // and whose physical surface tags become boundary ids.
+    // from a gmsh file whose physical volume tags become material ids
+    // and whose physical surface tags become boundary ids, or from the
+    // hexahedral generator of the bellows actuator (core/bellows_mesh.h),
+    // which reads the design of the body from its gmsh geometry file.
     struct Geometry
     {
       enum class MeshSource
       {
         generator,
-        file
+        file,
+        bellows
       };
       MeshSource   mesh_source;
       std::string  generator_name;
@@ -67,6 +70,10 @@ namespace SoftRobot
       double       distortion;
       std::string  material_id_function;
       double       model_fraction;
+      // The bellows generator's resolution (subsection Geometry/Bellows).
+      unsigned int bellows_cells_through_wall;
+      unsigned int bellows_cells_along_flank;
+      unsigned int bellows_cells_per_quarter_turn;
 
       static void
       declare_parameters(ParameterHandler &prm);

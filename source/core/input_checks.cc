@@ -234,10 +234,9 @@ namespace SoftRobot
               " at a quadrature point";
         }
       const std::string source =
-        (parameters.mesh_source == Parameters::Geometry::MeshSource::file)
-          ? "Geometry/Mesh file '" + parameters.mesh_file + "'"
-          : "the mesh of Geometry/Generator '" + parameters.generator_name +
-              "'";
+        (parameters.mesh_source == Parameters::Geometry::MeshSource::generator)
+          ? "the mesh of Geometry/Generator '" + parameters.generator_name + "'"
+          : "Geometry/Mesh file '" + parameters.mesh_file + "'";
       AssertThrow(n_bad == 0,
                   ExcMessage(parameters.where() + source + ": " + first_bad +
                              (n_bad > 1 ? " (and " + std::to_string(n_bad - 1) +

@@ -5,6 +5,7 @@
 // See include/core/mesh.h.
 
 #include <array>
+#include <core/bellows_mesh.h>
 #include <core/config.h>
 #include <core/expression_function.h>
 #include <core/input_checks.h>
@@ -404,6 +405,41 @@ namespace SoftRobot
         else
           serial.copy_triangulation(generated);
       }
+    else if (parameters.mesh_source ==
+             Parameters::Geometry::MeshSource::bellows)
+      {
+        // The checks of the parameters allow this source in 3D only.
+        if constexpr (dim == 3)
+          {
+            BellowsDesign design;
+            try
+              {
+                design = BellowsDesign::read(parameters.mesh_file);
+              }
+            catch (ExceptionBase &error)
+              {
+                std::ostringstream reason;
+                error.print_info(reason);
+                AssertThrow(false,
+                            ExcMessage(parameters.where() +
+                                       "Geometry/Mesh file: " +
+                                       Parameters::one_line(reason.str())));
+              }
+            BellowsResolution resolution;
+            resolution.cells_through_wall =
+              parameters.bellows_cells_through_wall;
+            resolution.cells_along_flank = parameters.bellows_cells_along_flank;
+            resolution.cells_per_quarter_turn =
+              parameters.bellows_cells_per_quarter_turn;
+            make_bellows_mesh(design,
+                              resolution,
+                              static_cast<unsigned int>(
+                                std::lround(4. * parameters.model_fraction)),
+                              serial);
+          }
+        else
+          AssertThrow(false, ExcInternalError());
+      }
     else
       read_mesh_file(parameters, serial, mid_edge_nodes);
 
@@ -480,10 +516,16 @@ namespace SoftRobot
     std::string
     mesh_name(const Parameters::AllParameters &parameters)
     {
-      return (parameters.mesh_source == Parameters::Geometry::MeshSource::file)
-               ? "the mesh file '" + parameters.mesh_file + "'"
-               : "the mesh of Geometry/Generator '" +
+      switch (parameters.mesh_source)
+        {
+          case Parameters::Geometry::MeshSource::file:
+            return "the mesh file '" + parameters.mesh_file + "'";
+          case Parameters::Geometry::MeshSource::bellows:
+            return "the bellows mesh of '" + parameters.mesh_file + "'";
+          default:
+            return "the mesh of Geometry/Generator '" +
                    parameters.generator_name + "'";
+        }
     }
   } // namespace
 

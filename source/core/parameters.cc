@@ -79,9 +79,12 @@ namespace SoftRobot
       prm.enter_subsection("Geometry");
       prm.declare_entry("Mesh source",
                         "generator",
-                        Patterns::Selection("generator|file"),
+                        Patterns::Selection("generator|file|bellows"),
                         "Where the mesh comes from: one of deal.II's "
-                        "GridGenerator functions, or a gmsh file.");
+                        "GridGenerator functions, a gmsh file, or the "
+                        "hexahedral mesh of the bellows actuator (3D only), "
+                        "made from the design in the gmsh geometry that "
+                        "Mesh file names (subsection Bellows).");
       prm.declare_entry("Generator",
                         "hyper_cube",
                         Patterns::Anything(),
@@ -104,7 +107,10 @@ namespace SoftRobot
                         "boundary ids. A format 2.2 file of second-order "
                         "triangles or tetrahedra (gmsh -order 2) gives "
                         "curved cells: their mid-edge nodes shape the "
-                        "geometry, whatever the Polynomial degree.");
+                        "geometry, whatever the Polynomial degree. With Mesh "
+                        "source = bellows: the gmsh geometry (.geo) whose "
+                        "design numbers (lines 'Name = number;') the "
+                        "generator reads.");
       prm.declare_entry("Global refinements",
                         "0",
                         Patterns::Integer(0, 10),
@@ -134,7 +140,29 @@ namespace SoftRobot
                         "Fraction of the physical body the mesh represents: "
                         "0.25 for a quarter model with two symmetry planes, "
                         "0.5 for a half model. Only used to convert the "
-                        "'Mass' of a material into a density.");
+                        "'Mass' of a material into a density, and by Mesh "
+                        "source = bellows for the part of the body it "
+                        "meshes (0.25, 0.5 or 1).");
+      prm.enter_subsection("Bellows");
+      prm.declare_entry("Cells through the wall",
+                        "1",
+                        Patterns::Integer(1, 16),
+                        "Hexahedra across the 3 mm wall (and the rows of "
+                        "the base ring, the cap and the block scale with "
+                        "it).");
+      prm.declare_entry("Cells along a flank",
+                        "3",
+                        Patterns::Integer(1, 64),
+                        "Hexahedra along each straight flank of a "
+                        "convolution; the folds have one per chord of the "
+                        "section polygon.");
+      prm.declare_entry("Cells per quarter turn",
+                        "2",
+                        Patterns::Integer(2, 64),
+                        "Hexahedra per 90 degrees about the axis; an even "
+                        "number (the O-grid about the axis has half as "
+                        "many along each side of its square core).");
+      prm.leave_subsection();
       prm.leave_subsection();
     }
 
@@ -142,16 +170,24 @@ namespace SoftRobot
     Geometry::parse_parameters(ParameterHandler &prm)
     {
       prm.enter_subsection("Geometry");
-      mesh_source    = (prm.get("Mesh source") == "file") ? MeshSource::file
-                                                          : MeshSource::generator;
-      generator_name = prm.get("Generator");
-      generator_arguments  = prm.get("Generator arguments");
-      mesh_file            = prm.get("Mesh file");
-      global_refinements   = prm.get_integer("Global refinements");
-      convert_to_simplices = prm.get_bool("Convert to simplices");
-      distortion           = prm.get_double("Random distortion");
-      material_id_function = prm.get("Material id function");
-      model_fraction       = prm.get_double("Model fraction");
+      const std::string source = prm.get("Mesh source");
+      mesh_source              = (source == "file")      ? MeshSource::file
+                                 : (source == "bellows") ? MeshSource::bellows
+                                                         : MeshSource::generator;
+      generator_name           = prm.get("Generator");
+      generator_arguments      = prm.get("Generator arguments");
+      mesh_file                = prm.get("Mesh file");
+      global_refinements       = prm.get_integer("Global refinements");
+      convert_to_simplices     = prm.get_bool("Convert to simplices");
+      distortion               = prm.get_double("Random distortion");
+      material_id_function     = prm.get("Material id function");
+      model_fraction           = prm.get_double("Model fraction");
+      prm.enter_subsection("Bellows");
+      bellows_cells_through_wall = prm.get_integer("Cells through the wall");
+      bellows_cells_along_flank  = prm.get_integer("Cells along a flank");
+      bellows_cells_per_quarter_turn =
+        prm.get_integer("Cells per quarter turn");
+      prm.leave_subsection();
       prm.leave_subsection();
     }
 
@@ -1363,12 +1399,37 @@ namespace SoftRobot
                                  std::to_string(dimension) + "D."));
         }
       check_pneumatics();
-      AssertThrow(mesh_source != MeshSource::file || !mesh_file.empty(),
+      AssertThrow(mesh_source == MeshSource::generator || !mesh_file.empty(),
                   ExcMessage(where + "Geometry/Mesh file must name a gmsh "
-                                     "file when Mesh source = file."));
-      AssertThrow(mesh_source != MeshSource::file || std::ifstream(mesh_file),
+                                     "file when Mesh source = file or "
+                                     "bellows."));
+      AssertThrow(mesh_source == MeshSource::generator ||
+                    std::ifstream(mesh_file),
                   ExcMessage(where + "Geometry/Mesh file: cannot open '" +
                              mesh_file + "'."));
+      if (mesh_source == MeshSource::bellows)
+        {
+          AssertThrow(dimension == 3,
+                      ExcMessage(where +
+                                 "Geometry/Mesh source = bellows "
+                                 "makes a 3D mesh; Problem/Dimension "
+                                 "is " +
+                                 std::to_string(dimension) + "."));
+          AssertThrow(model_fraction == 0.25 || model_fraction == 0.5 ||
+                        model_fraction == 1.,
+                      ExcMessage(where + "Geometry/Model fraction = " +
+                                 std::to_string(model_fraction) +
+                                 ": with Mesh source = bellows it must be "
+                                 "0.25 (quarter), 0.5 (half) or 1 (full "
+                                 "body)."));
+          AssertThrow(bellows_cells_per_quarter_turn % 2 == 0,
+                      ExcMessage(
+                        where +
+                        "Geometry/Bellows/Cells per quarter "
+                        "turn = " +
+                        std::to_string(bellows_cells_per_quarter_turn) +
+                        ": it must be even (2 to 64)."));
+        }
     }
 
 

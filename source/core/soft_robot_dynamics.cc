@@ -209,8 +209,13 @@ namespace SoftRobot
       }
     else
       {
-        fe              = std::make_unique<FESystem<dim>>(FE_Q<dim>(p), dim);
-        mapping         = std::make_unique<MappingQ<dim>>(1);
+        fe = std::make_unique<FESystem<dim>>(FE_Q<dim>(p), dim);
+        // A mesh with curved manifolds (the bellows) gets the isoparametric
+        // mapping, which places the support points on them.
+        bool curved = false;
+        for (const auto &cell : triangulation.active_cell_iterators())
+          curved = curved || (cell->manifold_id() != numbers::flat_manifold_id);
+        mapping         = std::make_unique<MappingQ<dim>>(curved ? p : 1);
         cell_quadrature = std::make_unique<QGauss<dim>>(n_q);
         mass_quadrature = std::make_unique<QGauss<dim>>(p + 1);
         face_quadrature = std::make_unique<QGauss<dim - 1>>(p + 1);
