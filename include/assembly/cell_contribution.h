@@ -63,17 +63,18 @@ namespace SoftRobot
   {
     // The gradients of the cell's shape functions, [q][i] (see
     // CellGeometry::cell_gradients()).
-    std::vector<Tensor<1, dim>>          shape_gradients;
-    std::vector<SymmetricTensor<2, dim>> delta_E;
-    // $\operatorname{sym}(\mathbf L_{c_j}\otimes\nabla_0\varphi_j)$ of the
-    // viscous stress's non-symmetric tangent (see KelvinVoigtDamping).
-    std::vector<SymmetricTensor<2, dim>> delta_rate;
-    std::vector<Tensor<2, dim>>          displacement_gradients;
-    std::vector<Tensor<2, dim>>          velocity_gradients;
-    Vector<double>                       volume_gradient;
+    std::vector<Tensor<1, dim>> shape_gradients;
+    std::vector<Tensor<2, dim>> displacement_gradients;
+    std::vector<Tensor<2, dim>> velocity_gradients;
+    Vector<double>              volume_gradient;
     // $\partial(\mathbf g\cdot\mathbf v)/\partial\mathbf u$ of the
     // mean-dilatation damping (see KelvinVoigtDamping).
     Vector<double> rate_gradient;
+    // The points' shares of the tangent and of the damping matrix, by
+    // shape functions (see physics/point_tangent.h), added in full after
+    // the symmetric part has been completed from its lower triangle.
+    std::vector<double> tangent_block;
+    std::vector<double> damping_block;
     // The non-symmetric part of a cell matrix, added in full after the
     // symmetric part has been completed from its lower triangle.
     FullMatrix<double> nonsymmetric_matrix;

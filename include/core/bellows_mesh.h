@@ -26,6 +26,7 @@
 //   points spaced evenly along its chords, so that every vertex of the
 //   polygon is a vertex of the mesh and the polygon is represented
 //   exactly;
+//   (`Cells per chord` stations per chord of that side);
 // - on a flank, whose two sides are parallel, `Cells along a flank`
 //   cells between the stations at its ends, which are normal to it.
 // The strip has `Cells through the wall` cells across. The base ring and
@@ -143,6 +144,7 @@ namespace SoftRobot
   {
     unsigned int cells_through_wall     = 1;
     unsigned int cells_along_flank      = 3;
+    unsigned int cells_per_chord        = 1;
     unsigned int cells_per_quarter_turn = 2;
   };
 

@@ -73,6 +73,7 @@ namespace SoftRobot
       // The bellows generator's resolution (subsection Geometry/Bellows).
       unsigned int bellows_cells_through_wall;
       unsigned int bellows_cells_along_flank;
+      unsigned int bellows_cells_per_chord;
       unsigned int bellows_cells_per_quarter_turn;
 
       static void

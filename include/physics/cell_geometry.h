@@ -60,6 +60,11 @@ namespace SoftRobot
     unsigned int n_q_points    = 0;
     // The component $c_i$ of each shape function of a cell.
     std::vector<unsigned int> components;
+    // The FESystem is dim copies of one scalar element: the number of that
+    // element's shape functions $\varphi_a$, and the dof of component c of
+    // each, [a * dim + c].
+    unsigned int              n_shape_functions = 0;
+    std::vector<unsigned int> shape_dofs;
     // Per cell: the global dof indices, [cell][i].
     std::vector<types::global_dof_index> dof_indices;
     // Per reference point: the gradients of the scalar shape functions on

@@ -158,6 +158,9 @@ namespace SoftRobot
       double pressure             = 0.;
       double volumetric_stiffness = 0.;
       double volume               = 0.;
+      // The volumetric viscous pressure of KelvinVoigtDamping, for the
+      // tangent (zero unless a matrix is assembled).
+      double viscous_pressure = 0.;
     };
     CellPressure
     cell_pressure(const unsigned int                 cell,

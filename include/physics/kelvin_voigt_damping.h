@@ -136,30 +136,48 @@ namespace SoftRobot
     // tangent (from which the viscosity is recorded).
     struct PointKinematics
     {
-      unsigned int                                q;
-      const Tensor<2, dim>                       *F;
-      const Tensor<2, dim>                       *L;
-      const std::vector<SymmetricTensor<2, dim>> *delta_E;
-      const SymmetricTensor<4, dim>              *material_tangent;
+      unsigned int                   q;
+      const Tensor<2, dim>          *F;
+      const Tensor<2, dim>          *L;
+      const SymmetricTensor<4, dim> *material_tangent;
+      // Where the point's terms of the matrices go (see point_tangent.h):
+      // the tangent (with its non-symmetric part unless the tangent must be
+      // symmetric) and the damping matrix; null for a matrix not asked for.
+      Tensor<4, dim> *tangent         = nullptr;
+      Tensor<4, dim> *damping_tangent = nullptr;
+      // The cell's volumetric viscous pressure $p_v$ (mean dilatation; see
+      // cell_viscous_pressure()), whose volume Hessian the tangent gets.
+      double volume_pressure = 0.;
     };
 
-    // The viscous force of point q into `local.second_force`; with a matrix
-    // its tangent into `local.matrix` (lower triangle of the symmetric
-    // part) and `local.workspace.nonsymmetric_matrix` (the rest, full), and
-    // the damping matrix into `local.second_matrix` (lower triangle). With
+    // The viscous force of point q into `local.second_force`; the point's
+    // terms of the tangent and of the damping matrix into the tensors of
+    // `point`, and the point's share of $\partial(\mathbf g\cdot\mathbf
+    // v)/\partial\mathbf u$ into `local.workspace.rate_gradient`. With
     // `local.request.store_viscosity` the viscosity of the point is first
     // recorded from the material tangent.
     void
     add_point_contribution(const PointKinematics &point,
                            CellContribution<dim> &local) const;
 
+    // The viscous pressure $p_v = \kappa_v\dot V_e/V_{0,e}$ of a cell from
+    // its volume rate $\dot V_e = \sum_q w_q\,\mathrm{cof}\,\mathbf
+    // F:\mathbf L_0$ (equal to $\mathbf g\cdot\mathbf v$), before the
+    // points are integrated; $\kappa_v$ is the recorded one, or with
+    // `local.request.store_viscosity` the current `volumetric_stiffness`.
+    double
+    cell_viscous_pressure(const double                 reference_volume,
+                          const double                 volume_rate,
+                          const double                 volumetric_stiffness,
+                          const CellContribution<dim> &local) const;
+
     // The volumetric viscous force of the mean-dilatation formulation of
     // the cell, with the cell's reference volume, volume derivative
-    // $\mathbf g$ (`local.workspace.volume_gradient`), $\partial(\mathbf g
-    // \cdot\mathbf v)/\partial\mathbf u$ (`local.workspace.rate_gradient`)
-    // and the volume Hessian times $p_v$ added through
-    // add_volume_hessian(). `volumetric_stiffness` is $U''(\Theta_e)$ of
-    // the current state, recorded with the viscosity.
+    // $\mathbf g$ (`local.workspace.volume_gradient`) and $\partial(\mathbf g
+    // \cdot\mathbf v)/\partial\mathbf u$ (`local.workspace.rate_gradient`);
+    // the volume Hessian times $p_v$ came with the points.
+    // `volumetric_stiffness` is $U''(\Theta_e)$ of the current state,
+    // recorded with the viscosity.
     void
     add_volumetric_contribution(const double           reference_volume,
                                 const double           volumetric_stiffness,

@@ -330,7 +330,8 @@ namespace SoftRobot
   {
     const unsigned int n_t = resolution.cells_through_wall;
     const unsigned int n_f = resolution.cells_along_flank;
-    AssertThrow(n_t >= 1 && n_f >= 1, ExcInternalError());
+    const unsigned int n_c = resolution.cells_per_chord;
+    AssertThrow(n_t >= 1 && n_f >= 1 && n_c >= 1, ExcInternalError());
 
     // The derived quantities of bellows.geo: the two radii of the sides of a
     // fold, the radii of the folds' centres, and the unit normal
@@ -379,13 +380,16 @@ namespace SoftRobot
     // Along the wall from the bottom of the first cavity valley to the
     // bottom of the last. A valley's larger side is the cavity's, a crest's
     // the outer one.
-    const unsigned int cv = d.chords_cavity_valley;
-    const unsigned int cc = d.chords_outer_crest;
+    // Stations per fold: the chords of the side with the larger radius,
+    // each divided into `Cells per chord`.
+    const unsigned int cv = d.chords_cavity_valley * n_c;
+    const unsigned int cc = d.chords_outer_crest * n_c;
     const auto valley     = [&](const unsigned int k, const unsigned int j) {
       const Point<2> centre(x_first_valley + k * d.pitch, valley_centre_r);
       const double   first = pi + beta, last = 2. * pi - beta;
       return Station{
-        centre + large * unit(first + j * (last - first) / cv),
+        along_chords(
+          centre, large, first, last, d.chords_cavity_valley, double(j) / cv),
         along_chords(
           centre, small, first, last, d.chords_outer_valley, double(j) / cv)};
     };
@@ -396,7 +400,8 @@ namespace SoftRobot
       return Station{
         along_chords(
           centre, small, first, last, d.chords_cavity_crest, double(j) / cc),
-        centre + large * unit(first + j * (last - first) / cc)};
+        along_chords(
+          centre, large, first, last, d.chords_outer_crest, double(j) / cc)};
     };
 
     std::vector<Station> stations;

@@ -429,6 +429,7 @@ namespace SoftRobot
             resolution.cells_through_wall =
               parameters.bellows_cells_through_wall;
             resolution.cells_along_flank = parameters.bellows_cells_along_flank;
+            resolution.cells_per_chord   = parameters.bellows_cells_per_chord;
             resolution.cells_per_quarter_turn =
               parameters.bellows_cells_per_quarter_turn;
             make_bellows_mesh(design,

@@ -154,8 +154,12 @@ namespace SoftRobot
                         "3",
                         Patterns::Integer(1, 64),
                         "Hexahedra along each straight flank of a "
-                        "convolution; the folds have one per chord of the "
-                        "section polygon.");
+                        "convolution.");
+      prm.declare_entry("Cells per chord",
+                        "1",
+                        Patterns::Integer(1, 16),
+                        "Hexahedra along each chord of the section "
+                        "polygon's folds.");
       prm.declare_entry("Cells per quarter turn",
                         "2",
                         Patterns::Integer(2, 64),
@@ -185,6 +189,7 @@ namespace SoftRobot
       prm.enter_subsection("Bellows");
       bellows_cells_through_wall = prm.get_integer("Cells through the wall");
       bellows_cells_along_flank  = prm.get_integer("Cells along a flank");
+      bellows_cells_per_chord    = prm.get_integer("Cells per chord");
       bellows_cells_per_quarter_turn =
         prm.get_integer("Cells per quarter turn");
       prm.leave_subsection();

@@ -25,6 +25,15 @@ namespace SoftRobot
     n_q_points                   = quadrature.size();
     for (unsigned int i = 0; i < dofs_per_cell; ++i)
       components.push_back(fe.system_to_component_index(i).first);
+    AssertThrow(fe.n_components() == dim && dofs_per_cell % dim == 0,
+                ExcInternalError());
+    n_shape_functions = dofs_per_cell / dim;
+    shape_dofs.assign(dofs_per_cell, numbers::invalid_unsigned_int);
+    for (unsigned int i = 0; i < dofs_per_cell; ++i)
+      {
+        const auto [c, a]       = fe.system_to_component_index(i);
+        shape_dofs[a * dim + c] = i;
+      }
 
     for (unsigned int q = 0; q < n_q_points; ++q)
       for (unsigned int i = 0; i < dofs_per_cell; ++i)

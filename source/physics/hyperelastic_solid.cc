@@ -6,6 +6,7 @@
 
 #include <core/config.h>
 #include <physics/hyperelastic_solid.h>
+#include <physics/point_tangent.h>
 
 namespace SoftRobot
 {
@@ -138,11 +139,10 @@ namespace SoftRobot
     const unsigned int               cell = local.cell;
     const unsigned int               n    = geometry.dofs_per_cell;
     const std::vector<unsigned int> &comp = geometry.components;
-    const Tensor<1, dim> *grad_phi = &local.workspace.shape_gradients[q * n];
-    const double          JxW      = geometry.weight(cell, q);
-    const NeoHookeanEnergy<dim>          &law         = *cell_law[cell];
-    const bool                            with_matrix = local.request.matrix;
-    std::vector<SymmetricTensor<2, dim>> &delta_E     = local.workspace.delta_E;
+    const Tensor<1, dim> *grad_phi   = &local.workspace.shape_gradients[q * n];
+    const double          JxW        = geometry.weight(cell, q);
+    const NeoHookeanEnergy<dim> &law = *cell_law[cell];
+    const bool                   with_matrix = local.request.matrix;
 
     Tensor<2, dim> F = H;
     for (unsigned int d = 0; d < dim; ++d)
@@ -181,49 +181,48 @@ namespace SoftRobot
     const SymmetricTensor<2, dim> &S = response.second_piola;
     const Tensor<2, dim>           P = F * S;
     for (unsigned int i = 0; i < n; ++i)
-      {
-        local.force(i) += (P[comp[i]] * grad_phi[i]) * JxW;
-        if (with_matrix)
-          delta_E[i] = symmetrize(outer_product(F[comp[i]], grad_phi[i]));
-      }
+      local.force(i) += (P[comp[i]] * grad_phi[i]) * JxW;
+
+    // The matrices, as fourth-order tensors of the point (point_tangent.h):
+    // the tangent $F_{cI}\mathcal C_{IJKL}F_{kK} + \delta_{ck}S_{JL}$ with
+    // the viscous stress's terms, and the damping matrix of the state (the
+    // lagged one uses the positive semi-definite part of the material
+    // tangent).
+    const double zeta = cell_zeta[cell];
+    const bool   lagged_damping =
+      with_matrix && !viscous && local.request.second_matrix && zeta > 0.;
+    Tensor<4, dim> tangent, damping;
     if (viscous_cell(local))
       {
         typename KelvinVoigtDamping<dim>::PointKinematics point;
-        point.q       = q;
-        point.F       = &F;
-        point.L       = &local.workspace.velocity_gradients[q];
-        point.delta_E = with_matrix ? &delta_E : nullptr;
+        point.q = q;
+        point.F = &F;
+        point.L = &local.workspace.velocity_gradients[q];
         point.material_tangent =
           with_tangent ? &response.material_tangent : nullptr;
+        point.tangent = with_matrix ? &tangent : nullptr;
+        point.damping_tangent =
+          local.request.second_matrix ? &damping : nullptr;
+        point.volume_pressure = pressure.viscous_pressure;
         viscous->add_point_contribution(point, local);
       }
-    if (!with_matrix)
-      return;
-
-    const double zeta   = cell_zeta[cell];
-    const bool   damped = !viscous && local.request.second_matrix && zeta > 0.;
-    SymmetricTensor<4, dim> damping_tangent;
-    if (damped)
-      damping_tangent = positive_semidefinite_part(response.material_tangent);
-    for (unsigned int i = 0; i < n; ++i)
+    if (with_matrix)
       {
-        const SymmetricTensor<2, dim> C_dE_i =
-          response.material_tangent * delta_E[i];
-        const Tensor<1, dim> S_grad_phi_i = S * grad_phi[i];
-        for (unsigned int j = 0; j <= i; ++j)
-          {
-            double value = C_dE_i * delta_E[j];
-            if (comp[i] == comp[j])
-              value += S_grad_phi_i * grad_phi[j];
-            local.matrix(i, j) += value * JxW;
-          }
-        if (damped)
-          {
-            const SymmetricTensor<2, dim> D_dE_i = damping_tangent * delta_E[i];
-            for (unsigned int j = 0; j <= i; ++j)
-              local.second_matrix(i, j) += zeta * (D_dE_i * delta_E[j]) * JxW;
-          }
+        add_pulled_tangent(F, response.material_tangent, F, 1., tangent);
+        add_geometric_tangent(S, tangent);
+        if (lagged_damping)
+          add_pulled_tangent(F,
+                             positive_semidefinite_part(
+                               response.material_tangent),
+                             F,
+                             zeta,
+                             damping);
+        add_point_tangent(
+          geometry, grad_phi, tangent, JxW, local.workspace.tangent_block);
       }
+    if (lagged_damping || (viscous_cell(local) && local.request.second_matrix))
+      add_point_tangent(
+        geometry, grad_phi, damping, JxW, local.workspace.damping_block);
   }
 
 
@@ -240,9 +239,8 @@ namespace SoftRobot
   void
   HyperelasticSolid<dim>::cell_contribution(CellContribution<dim> &local) const
   {
-    const unsigned int n    = geometry.dofs_per_cell;
-    const unsigned int cell = local.cell;
-    local.workspace.delta_E.resize(n);
+    const unsigned int           n        = geometry.dofs_per_cell;
+    const unsigned int           cell     = local.cell;
     std::vector<Tensor<1, dim>> &grad_phi = local.workspace.shape_gradients;
     geometry.cell_gradients(cell, grad_phi);
     std::vector<Tensor<2, dim>> &H = local.workspace.displacement_gradients;
@@ -251,11 +249,36 @@ namespace SoftRobot
       displacement_gradients(grad_phi,
                              local.input_values[1],
                              local.workspace.velocity_gradients);
+    if (local.request.matrix)
+      reset_tangent_block(geometry, local.workspace.tangent_block);
+    if (local.request.second_matrix)
+      reset_tangent_block(geometry, local.workspace.damping_block);
     const bool rate_gradient =
       mean_dilatation && viscous_cell(local) && local.request.matrix;
     local.workspace.rate_gradient.reinit(rate_gradient ? n : 0);
 
-    const CellPressure    pressure = cell_pressure(cell, H, local);
+    CellPressure pressure = cell_pressure(cell, H, local);
+    // The volumetric viscous pressure, which the points' tangent needs,
+    // from the cell's volume rate $\sum_q w_q\,\mathrm{cof}\,\mathbf F:
+    // \mathbf L_0$ before the points are integrated.
+    if (mean_dilatation && viscous_cell(local) && local.request.matrix &&
+        !local.inverted)
+      {
+        double volume_rate = 0.;
+        for (unsigned int q = 0; q < geometry.n_q_points; ++q)
+          {
+            Tensor<2, dim> F = H[q];
+            for (unsigned int d = 0; d < dim; ++d)
+              F[d][d] += 1.;
+            const Tensor<2, dim> cofactor =
+              determinant(F) * transpose(invert(F));
+            volume_rate +=
+              scalar_product(cofactor, local.workspace.velocity_gradients[q]) *
+              geometry.weight(cell, q);
+          }
+        pressure.viscous_pressure = viscous->cell_viscous_pressure(
+          pressure.volume, volume_rate, pressure.volumetric_stiffness, local);
+      }
     MaterialResponse<dim> response;
     for (unsigned int q = 0; q < geometry.n_q_points; ++q)
       add_point_contribution(q, H[q], pressure, response, local);
@@ -265,7 +288,18 @@ namespace SoftRobot
                                            pressure.volumetric_stiffness,
                                            local);
     if (!local.request.matrix)
-      return;
+      {
+        if (local.request.second_matrix)
+          {
+            for (unsigned int i = 0; i < n; ++i)
+              for (unsigned int j = i + 1; j < n; ++j)
+                local.second_matrix(i, j) = local.second_matrix(j, i);
+            add_tangent_block(geometry,
+                              local.workspace.damping_block,
+                              local.second_matrix);
+          }
+        return;
+      }
     if (mean_dilatation && !local.inverted)
       {
         const Vector<double> &g = local.workspace.volume_gradient;
@@ -287,6 +321,11 @@ namespace SoftRobot
           local.matrix(i, j)        = local.matrix(j, i);
           local.second_matrix(i, j) = local.second_matrix(j, i);
         }
+    add_tangent_block(geometry, local.workspace.tangent_block, local.matrix);
+    if (local.request.second_matrix)
+      add_tangent_block(geometry,
+                        local.workspace.damping_block,
+                        local.second_matrix);
     if (local.workspace.has_nonsymmetric_part)
       local.matrix.add(1., local.workspace.nonsymmetric_matrix);
   }

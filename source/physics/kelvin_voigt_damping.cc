@@ -7,6 +7,7 @@
 #include <core/config.h>
 #include <material/neo_hookean_energy.h>
 #include <physics/kelvin_voigt_damping.h>
+#include <physics/point_tangent.h>
 
 namespace SoftRobot
 {
@@ -30,9 +31,13 @@ namespace SoftRobot
   //
   // The force $\int\delta\mathbf E_i:\mathbf S_v$ is computed as for the
   // elastic stress, $\int(\mathbf F\mathbf S_v)_{c_i}\cdot\nabla_0\varphi_i$.
-  // The damping matrix $\zeta\,\delta\mathbf E_i:\mathcal C^+:\delta\mathbf
-  // E_j$ is the same product, in the same order, as that of the
-  // stiffness-proportional damping matrix of HyperelasticSolid.
+  // The matrices' terms (see the header) in the form of point_tangent.h:
+  // the damping matrix $\zeta\,\delta\mathbf E_i:\mathcal D:\delta\mathbf
+  // E_j$ is $\zeta F_{cI}\mathcal D_{IJKL}F_{kK}$, the tangent adds it
+  // times $c_v$, the geometric term of $\mathbf S_v$, the volume Hessian
+  // times $p_v$ and, not symmetric, $\zeta\,\delta\mathbf E_i:\mathcal
+  // D:\mathrm{sym}(\mathbf l_{c_j}\otimes\nabla_0\varphi_j)$, which is
+  // $\zeta F_{cI}\mathcal D_{IJKL}L_{kK}$.
   template <int dim>
   void
   KelvinVoigtDamping<dim>::add_point_contribution(
@@ -63,57 +68,29 @@ namespace SoftRobot
     for (unsigned int i = 0; i < n; ++i)
       local.second_force(i) += (P_v[comp[i]] * grad_phi[i]) * JxW;
 
-    const bool with_matrix  = local.request.matrix;
-    const bool with_damping = local.request.second_matrix;
-    if (!with_matrix && !with_damping)
+    if (point.tangent == nullptr && point.damping_tangent == nullptr)
       return;
-    Assert(point.delta_E != nullptr, ExcInternalError());
-    const std::vector<SymmetricTensor<2, dim>> &dE = *point.delta_E;
-    const double c_v          = local.request.velocity_coefficient;
-    const bool   nonsymmetric = with_matrix && !symmetric_tangent;
-    // The rate's variation by shape function j, formed once per point
-    // instead of once per pair (i, j).
-    std::vector<SymmetricTensor<2, dim>> &delta_rate =
-      local.workspace.delta_rate;
-    if (nonsymmetric)
-      {
-        delta_rate.resize(n);
-        for (unsigned int j = 0; j < n; ++j)
-          delta_rate[j] = symmetrize(outer_product(L[comp[j]], grad_phi[j]));
-      }
-    for (unsigned int i = 0; i < n; ++i)
-      {
-        const SymmetricTensor<2, dim> D_dE_i       = D * dE[i];
-        const Tensor<1, dim>          S_v_grad_phi = S_v * grad_phi[i];
-        for (unsigned int j = 0; j <= i; ++j)
-          {
-            const double damping = zeta * (D_dE_i * dE[j]) * JxW;
-            if (with_damping)
-              local.second_matrix(i, j) += damping;
-            if (with_matrix)
-              {
-                double value = c_v * damping;
-                if (comp[i] == comp[j])
-                  value += (S_v_grad_phi * grad_phi[j]) * JxW;
-                local.matrix(i, j) += value;
-              }
-          }
-        if (nonsymmetric)
-          {
-            const double factor = zeta * JxW;
-            for (unsigned int j = 0; j < n; ++j)
-              local.workspace.nonsymmetric_matrix(i, j) +=
-                factor * (D_dE_i * delta_rate[j]);
-          }
-      }
-    if (nonsymmetric)
-      local.workspace.has_nonsymmetric_part = true;
+    Tensor<4, dim> damping;
+    add_pulled_tangent(F, D, F, zeta, damping);
+    if (point.damping_tangent != nullptr)
+      *point.damping_tangent += damping;
+    if (point.tangent == nullptr)
+      return;
+    Tensor<4, dim> &tangent = *point.tangent;
+    tangent += local.request.velocity_coefficient * damping;
+    add_geometric_tangent(S_v, tangent);
+    if constexpr (dim == 3)
+      if (point.volume_pressure != 0.)
+        add_volume_hessian(F, point.volume_pressure, tangent);
+    if (symmetric_tangent)
+      return;
+    add_pulled_tangent(F, D, L, zeta, tangent);
 
     // In the mean-dilatation formulation also the derivative of the cell's
     // volume rate, $\partial(\mathbf g\cdot\mathbf v)/\partial u_j = \int
     // \partial(\mathrm{cof}\,\mathbf F:\mathbf L_0)/\partial\mathbf F :
     // \nabla_0\mathbf N_j\,dV$, for the non-symmetric volumetric term.
-    if (nonsymmetric && local.workspace.rate_gradient.size() == n)
+    if (local.workspace.rate_gradient.size() == n)
       {
         const Tensor<2, dim> F_inverse = invert(F);
         const double         J         = determinant(F);
@@ -123,6 +100,23 @@ namespace SoftRobot
         for (unsigned int j = 0; j < n; ++j)
           local.workspace.rate_gradient(j) += (M[comp[j]] * grad_phi[j]) * JxW;
       }
+  }
+
+
+
+  // @sect4{KelvinVoigtDamping::cell_viscous_pressure}
+  template <int dim>
+  double
+  KelvinVoigtDamping<dim>::cell_viscous_pressure(
+    const double                 reference_volume,
+    const double                 volume_rate,
+    const double                 volumetric_stiffness,
+    const CellContribution<dim> &local) const
+  {
+    const double stiffness = local.request.store_viscosity
+                               ? volumetric_stiffness
+                               : volumetric_viscosity[local.cell];
+    return cell_zeta[local.cell] * stiffness * volume_rate / reference_volume;
   }
 
 
@@ -149,8 +143,9 @@ namespace SoftRobot
   //
   // The force $p_v\mathbf g$ and, with a matrix, $\kappa_v V_{0,e}^{-1}
   // (c_v\mathbf g\mathbf g^T + \mathbf g\,(\partial(\mathbf g\cdot\mathbf
-  // v)/\partial\mathbf u)^T) + p_v\,\partial\mathbf g/\partial\mathbf u$,
-  // the last from the second derivatives of $J$ at the cell's points.
+  // v)/\partial\mathbf u)^T)$; the term $p_v\,\partial\mathbf g/\partial
+  // \mathbf u$, from the second derivatives of $J$, was added at the
+  // cell's points.
   template <int dim>
   void
   KelvinVoigtDamping<dim>::add_volumetric_contribution(
@@ -189,35 +184,6 @@ namespace SoftRobot
     if (!with_matrix)
       return;
 
-    // $p_v\,\partial^2 V_e/\partial u_i\partial u_j = p_v\int
-    // \varepsilon_{c_ic_jk}\,\mathbf f_k\cdot(\nabla_0\varphi_i\times
-    // \nabla_0\varphi_j)\,dV$ (3D only: the mean-dilatation formulation is
-    // for the 3D material).
-    if constexpr (dim == 3)
-      if (p_v != 0.)
-        {
-          const std::vector<unsigned int> &comp = geometry.components;
-          for (unsigned int q = 0; q < geometry.n_q_points; ++q)
-            {
-              Tensor<2, dim> F = local.workspace.displacement_gradients[q];
-              for (unsigned int d = 0; d < dim; ++d)
-                F[d][d] += 1.;
-              const Tensor<1, dim> *grad_phi =
-                &local.workspace.shape_gradients[q * n];
-              const double w = p_v * geometry.weight(cell, q);
-              for (unsigned int i = 0; i < n; ++i)
-                for (unsigned int j = 0; j < i; ++j)
-                  if (comp[i] != comp[j])
-                    {
-                      const unsigned int k = 3 - comp[i] - comp[j];
-                      const double       sign =
-                        ((comp[i] + 1) % 3 == comp[j]) ? 1. : -1.;
-                      local.matrix(i, j) +=
-                        w * sign *
-                        (F[k] * cross_product_3d(grad_phi[i], grad_phi[j]));
-                    }
-            }
-        }
     if (!symmetric_tangent)
       {
         const Vector<double> &h = local.workspace.rate_gradient;
