@@ -28,6 +28,11 @@
 #           Frontal-Delaunay surface mesher instead of Delaunay: a second mesh
 #           of the same size, for the scatter between meshes (not committed;
 #           the reference study writes it).
+#   medium-cylinder  the quarter and half models' medium meshes with the
+#           tip block as the cylinder of the hexahedral mesh (BlockShape 1,
+#           include/core/bellows_mesh.h) instead of the box (not committed;
+#           the reference study writes them, to measure what the block's
+#           shape changes).
 #   ultrafine  element size 1 mm, the quarter model only, about 87,000
 #           unknowns with linear elements: the benchmark's largest mesh. At
 #           7 MB it is not committed; the benchmark writes it when missing.
@@ -43,6 +48,7 @@ here="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
 geo="$here/bellows.geo"
 
 # model   Model  level   ElementSize  CircleNodes  SurfaceAlgorithm
+#   [ElementOrder [BlockShape]]
 meshes="
 quarter 1 coarse 10.5 7 6
 half    2 coarse  9.5 7 6
@@ -58,17 +64,19 @@ quarter 1 extrafine-frontal 2 7 6
 quarter 1 ultrafine 1 7 6
 quarter 1 coarse-curved 10.5 7 6 2
 quarter 1 medium-curved 5 7 6 2
+quarter 1 medium-cylinder 5 7 5 1 1
+half    2 medium-cylinder 5 7 1 1 1
 "
 
 only="${1:-}"
 only_level="${2:-}"
 printf "%-28s %10s %8s %10s\n" "mesh" "tets" "nodes" "triangles"
-while read -r model quarters level size circle surface order; do
+while read -r model quarters level size circle surface order shape; do
   [ -z "$model" ] && continue
   [ -n "$only" ] && [ "$only" != "$model" ] && continue
   [ -n "$only_level" ] && [ "$only_level" != "$level" ] && continue
   # The meshes that are not committed only when asked for by name.
-  case "$level" in ultrafine | extrafine-frontal | *-curved)
+  case "$level" in ultrafine | extrafine-frontal | *-curved | *-cylinder)
     [ "$only_level" != "$level" ] && continue ;;
   esac
   out="$here/bellows_${model}_${level}.msh"
@@ -76,7 +84,8 @@ while read -r model quarters level size circle surface order; do
   gmsh "$geo" -3 -nt 1 -format msh22 \
     -setnumber Model "$quarters" -setnumber ElementSize "$size" \
     -setnumber CircleNodes "$circle" -setnumber SurfaceAlgorithm "$surface" \
-    -setnumber ElementOrder "${order:-1}" -o "$out" > "$log" 2>&1 || true
+    -setnumber ElementOrder "${order:-1}" -setnumber BlockShape "${shape:-0}" \
+    -o "$out" > "$log" 2>&1 || true
   # gmsh reports errors (including those raised by bellows.geo's own checks)
   # on its log but still exits with 0.
   # A curved mesh must leave no tetrahedron inverted ("jac. < 0" in the
