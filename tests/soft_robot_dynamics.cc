@@ -622,7 +622,10 @@ TYPED_TEST(SolverTest, PatchTestHypercubes)
   check_patch_test<TypeParam::value>(false, 1);
   check_patch_test<TypeParam::value>(false, 2);
   if (TypeParam::value == 3)
-    check_patch_test<TypeParam::value>(false, 2, "mean dilatation");
+    {
+      check_patch_test<TypeParam::value>(false, 2, "mean dilatation");
+      check_patch_test<TypeParam::value>(false, 2, "linear dilatation");
+    }
 }
 
 // In 1D a simplex is a line, the hypercube of the test above: the simplex

@@ -66,10 +66,18 @@ namespace SoftRobot
     std::vector<Tensor<1, dim>> shape_gradients;
     std::vector<Tensor<2, dim>> displacement_gradients;
     std::vector<Tensor<2, dim>> velocity_gradients;
-    Vector<double>              volume_gradient;
-    // $\partial(\mathbf g\cdot\mathbf v)/\partial\mathbf u$ of the
-    // mean-dilatation damping (see KelvinVoigtDamping).
-    Vector<double> rate_gradient;
+    // The projected-dilatation formulations (see HyperelasticSolid): the
+    // derivatives $\mathbf G$ of the moments of the volume,
+    // [mode][dof], and of the moments of the volume rate, $\partial(\mathbf
+    // G\mathbf v)/\partial\mathbf u$ (see KelvinVoigtDamping); per point
+    // the projected volume change $\Theta - 1$, the pressure, the
+    // volumetric stiffness $U''(\Theta)$ and the viscous pressure.
+    FullMatrix<double>  volume_gradients;
+    FullMatrix<double>  rate_gradients;
+    std::vector<double> point_volume_change;
+    std::vector<double> point_pressure;
+    std::vector<double> point_volumetric_stiffness;
+    std::vector<double> point_viscous_pressure;
     // The points' shares of the tangent and of the damping matrix, by
     // shape functions (see physics/point_tangent.h), added in full after
     // the symmetric part has been completed from its lower triangle.

@@ -91,7 +91,8 @@ namespace SoftRobot
       enum class VolumetricFormulation
       {
         displacement,
-        mean_dilatation
+        mean_dilatation,
+        linear_dilatation
       };
       VolumetricFormulation volumetric_formulation;
       // Whether the global addition uses DirectAddressAssembler.

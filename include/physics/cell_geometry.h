@@ -67,6 +67,8 @@ namespace SoftRobot
     std::vector<unsigned int> shape_dofs;
     // Per cell: the global dof indices, [cell][i].
     std::vector<types::global_dof_index> dof_indices;
+    // The quadrature points on the reference cell, [q].
+    std::vector<Point<dim>> unit_points;
     // Per reference point: the gradients of the scalar shape functions on
     // the reference cell, [q][i].
     std::vector<Tensor<1, dim>> reference_gradients;

@@ -45,15 +45,22 @@
 // factor (cross-section area in 1D, thickness in 2D), which CellGeometry
 // has multiplied into the weights.
 //
-// In 3D, `Finite element/Volumetric formulation = mean dilatation` replaces
-// the volumetric energy $U(J)$ at each quadrature point by $V_e\,U(\Theta_e)$
-// per cell, with the cell's mean volume ratio $\Theta_e = V_e^{-1}\int_e
-// J\,dV$: the three-field formulation with pressure and dilatation constant
-// per cell, condensed cell by cell (see doc/introduction.md). With
-// quadratic elements it does not lock as $\kappa/\mu$ grows; the cell's
-// pressure $U'(\Theta_e)$ enters the stress at every point of the cell, and
-// the tangent gets the rank-one term $U''(\Theta_e)/V_e\;\mathbf g\mathbf
-// g^T$ with the derivative $\mathbf g$ of the cell's volume.
+// In 3D, `Finite element/Volumetric formulation = mean dilatation` or
+// `linear dilatation` replaces the volumetric energy $U(J)$ at each
+// quadrature point by $\int_e U(\Theta)\,dV$ with the projection $\Theta =
+// \Pi J$ of the volume ratio on one mode per cell (the mean volume ratio)
+// or on $1 + $dim (a linear field; see DilatationProjection): the
+// three-field formulation with pressure and dilatation from the same
+// discontinuous space, condensed cell by cell (see doc/introduction.md).
+// With quadratic elements it does not lock as $\kappa/\mu$ grows. The
+// pressure $\bar p = \Pi\,U'(\Theta)$ enters the stress at every point,
+// $\mathbf S = \partial\Psi_{\mathrm{iso}}/\partial\mathbf E + \bar p
+// J\mathbf C^{-1}$, and the tangent gets the rank-n term $\mathbf
+// G^T\mathbf A\mathbf G$ with the derivatives $G_{mi} = \int
+// N_m\,\mathrm{cof}\,\mathbf F:\nabla_0\mathbf N_i\,dV$ of the volume's
+// moments and $\mathbf A = \mathbf M^{-1}\int U''(\Theta)\mathbf N\mathbf
+// N^T dV\,\mathbf M^{-1}$; with one mode that is $U''(\Theta_e)/V_e\;\mathbf
+// g\mathbf g^T$ with the derivative $\mathbf g$ of the cell's volume.
 //
 // A quadrature point with $\det\mathbf F\le 0$ has no physical meaning: it
 // is reported in the contribution, and the caller rejects the state.
@@ -69,6 +76,7 @@
 #include <material/neo_hookean_energy.h>
 #include <memory>
 #include <physics/cell_geometry.h>
+#include <physics/dilatation_projection.h>
 #include <physics/kelvin_voigt_damping.h>
 #include <utility>
 #include <vector>
@@ -115,9 +123,8 @@ namespace SoftRobot
     cell_contribution(CellContribution<dim> &local) const;
 
     // The averages over the cell's quadrature points of the volume ratio
-    // $J$ and of the Cauchy stress, for the output (with the
-    // mean-dilatation formulation the pressure is that of the cell's mean
-    // volume ratio, as in the assembly).
+    // $J$ and of the Cauchy stress, for the output (with a projected
+    // dilatation the pressure is the projected one, as in the assembly).
     std::pair<double, SymmetricTensor<2, dim>>
     cell_averages(const unsigned int cell, const double *cell_u) const;
 
@@ -128,12 +135,6 @@ namespace SoftRobot
       return laws.at(id);
     }
 
-    // Whether the mean-dilatation formulation is used.
-    bool
-    uses_mean_dilatation() const
-    {
-      return mean_dilatation;
-    }
 
   private:
     // Whether the cell integral includes the viscous stress: with the
@@ -152,31 +153,37 @@ namespace SoftRobot
                            const double                      *cell_u,
                            std::vector<Tensor<2, dim>>       &H) const;
 
-    // The condensed pressure of the mean-dilatation formulation.
-    struct CellPressure
+    // The number of dilatation modes of the parameters' formulation.
+    static unsigned int
+    dilatation_modes(const Parameters::AllParameters &parameters,
+                     const CellGeometry<dim>         &geometry);
+
+    // The projected dilatation of a cell: the inverse Gram matrix of the
+    // modes, the stiffness of the moments $\mathbf A$, and for the
+    // Kelvin-Voigt damping the coefficients of the viscous pressure and its
+    // matrix $\mathbf A_v$; the point values (volume change, pressure,
+    // $U''$, viscous pressure) are in the work space.
+    struct CellDilatation
     {
-      double pressure             = 0.;
-      double volumetric_stiffness = 0.;
-      double volume               = 0.;
-      // The volumetric viscous pressure of KelvinVoigtDamping, for the
-      // tangent (zero unless a matrix is assembled).
-      double viscous_pressure = 0.;
+      typename DilatationProjection<dim>::ModeMatrix inverse_gram{};
+      typename DilatationProjection<dim>::ModeMatrix stiffness{};
+      typename DilatationProjection<dim>::ModeVector viscous_pressure{};
+      typename DilatationProjection<dim>::ModeMatrix viscous_stiffness{};
     };
-    CellPressure
-    cell_pressure(const unsigned int                 cell,
-                  const std::vector<Tensor<2, dim>> &H,
-                  CellContribution<dim>             &local) const;
+    CellDilatation
+    cell_dilatation(const unsigned int                 cell,
+                    const std::vector<Tensor<2, dim>> &H,
+                    CellContribution<dim>             &local) const;
 
     // The contribution of quadrature point q.
     void
     add_point_contribution(const unsigned int     q,
                            const Tensor<2, dim>  &H,
-                           const CellPressure    &pressure,
                            MaterialResponse<dim> &response,
                            CellContribution<dim> &local) const;
 
     const CellGeometry<dim>                            &geometry;
-    const bool                                          mean_dilatation;
+    const DilatationProjection<dim>                     projection;
     bool                                                damped = false;
     std::map<types::material_id, NeoHookeanEnergy<dim>> laws;
     // Per cell: its law and damping coefficient $\zeta$.

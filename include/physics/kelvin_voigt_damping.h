@@ -81,20 +81,24 @@
 // to the first and is left out when the linear solver needs a symmetric
 // matrix (CG), which only makes Newton's method slightly inexact.
 
-// @sect4{The mean-dilatation formulation}
+// @sect4{The projected-dilatation formulations}
 //
-// There the volumetric energy acts on each cell's mean volume ratio
-// $\Theta_e = V_e/V_{0,e}$, and so does the volumetric viscosity: the
-// cell's viscous pressure is $p_v = \kappa_v\dot\Theta_e$ with
-// $\dot\Theta_e = V_{0,e}^{-1}\mathbf g\cdot\mathbf v$, $\mathbf g =
-// \partial V_e/\partial\mathbf u$ (which vanishes for rigid motions as
-// $\dot J = J\,\mathrm{tr}(\mathbf F^{-1}\mathbf L_0)$ does), and
-// $\kappa_v = \zeta\,U''(\Theta_e)$ at the step's first state. Its force is
-// $p_v\mathbf g$, its derivatives $\kappa_v V_{0,e}^{-1}\,c_v\,\mathbf
-// g\mathbf g^T$ (the rank-one term of the damping matrix), $p_v\,\partial
-// \mathbf g/\partial\mathbf u$ (symmetric) and $\kappa_v V_{0,e}^{-1}\,
-// \mathbf g\,(\partial(\mathbf g\cdot\mathbf v)/\partial\mathbf u)^T$ (not
-// symmetric), with
+// There the volumetric energy acts on the projection $\Theta = \Pi J$ of
+// the volume ratio on a few modes per cell (DilatationProjection), and so
+// does the volumetric viscosity: the dissipation potential is $\frac12
+// \int_e\zeta\kappa_v\dot\Theta^2\,dV$ with $\dot\Theta = \Pi\dot J$,
+// $\dot J = \mathrm{cof}\,\mathbf F:\mathbf L_0$ (which vanishes for rigid
+// motions) and $\kappa_v = U''(\Theta)$ at the step's first state. With the
+// moments $\mathbf b$ of the volume and their derivatives $\mathbf G =
+// \partial\mathbf b/\partial\mathbf u$ ($\dot{\mathbf b} = \mathbf G\mathbf
+// v$) its force is $\mathbf G^T\boldsymbol\pi_v$, $\boldsymbol\pi_v =
+// \mathbf M^{-1}\int\mathbf N\zeta\kappa_v\dot\Theta\,dV$ the
+// coefficients of the viscous pressure $p_v = \Pi(\zeta\kappa_v\dot\Theta)$,
+// and its derivatives are $\mathbf G^T\mathbf A_v(c_v\mathbf G + \mathbf
+// H)$ with $\mathbf A_v = \mathbf M^{-1}\int\zeta\kappa_v\mathbf N\mathbf
+// N^T\mathbf M^{-1}$ and $\mathbf H = \partial(\mathbf G\mathbf v)/\partial
+// \mathbf u$ (not symmetric), and $\int p_v\,\partial^2 J/\partial\mathbf
+// u^2\,dV$ (symmetric), with
 // @f[
 //   \frac{\partial^2 J}{\partial F_{aA}\,\partial F_{bB}} =
 //   \varepsilon_{abk}\varepsilon_{ABK}F_{kK},\qquad
@@ -102,6 +106,10 @@
 //   = J\left(\mathrm{tr}(\mathbf F^{-1}\mathbf L_0)\,\mathbf F^{-T} -
 //   (\mathbf F^{-1}\mathbf L_0\mathbf F^{-1})^T\right).
 // @f]
+// With one mode (mean dilatation) that is the cell's viscous pressure $p_v
+// = \zeta\kappa_v\mathbf g\cdot\mathbf v/V_{0,e}$, the force $p_v\mathbf
+// g$ and the rank-one damping matrix $\zeta\kappa_v V_{0,e}^{-1}\mathbf
+// g\mathbf g^T$.
 //
 // Implemented in source/physics/kelvin_voigt_damping.cc; HyperelasticSolid
 // calls it at each quadrature point and once per cell.
@@ -113,6 +121,7 @@
 #include <deal.II/base/symmetric_tensor.h>
 #include <deal.II/base/tensor.h>
 #include <physics/cell_geometry.h>
+#include <physics/dilatation_projection.h>
 #include <vector>
 
 namespace SoftRobot
@@ -145,9 +154,12 @@ namespace SoftRobot
       // symmetric) and the damping matrix; null for a matrix not asked for.
       Tensor<4, dim> *tangent         = nullptr;
       Tensor<4, dim> *damping_tangent = nullptr;
-      // The cell's volumetric viscous pressure $p_v$ (mean dilatation; see
-      // cell_viscous_pressure()), whose volume Hessian the tangent gets.
-      double volume_pressure = 0.;
+      // The volumetric viscous pressure $p_v$ at the point (projected
+      // dilatation; see volumetric_viscosity()), whose volume Hessian the
+      // tangent gets, and the dilatation modes at the point.
+      double       volume_pressure = 0.;
+      unsigned int n_modes         = 0;
+      double       modes[dim + 1]  = {};
     };
 
     // The viscous force of point q into `local.second_force`; the point's
@@ -160,47 +172,50 @@ namespace SoftRobot
     add_point_contribution(const PointKinematics &point,
                            CellContribution<dim> &local) const;
 
-    // The viscous pressure $p_v = \kappa_v\dot V_e/V_{0,e}$ of a cell from
-    // its volume rate $\dot V_e = \sum_q w_q\,\mathrm{cof}\,\mathbf
-    // F:\mathbf L_0$ (equal to $\mathbf g\cdot\mathbf v$), before the
-    // points are integrated; $\kappa_v$ is the recorded one, or with
-    // `local.request.store_viscosity` the current `volumetric_stiffness`.
-    double
-    cell_viscous_pressure(const double                 reference_volume,
-                          const double                 volume_rate,
-                          const double                 volumetric_stiffness,
-                          const CellContribution<dim> &local) const;
+    // The volumetric viscosity of the projected-dilatation formulations
+    // (see DilatationProjection and the section above): from the rates
+    // $\dot J = \mathrm{cof}\,\mathbf F:\mathbf L_0$ at the cell's points
+    // (`point_rate`) the rate $\dot\Theta = \Pi\dot J$ of the projected
+    // volume ratio, and the viscous pressure $p_v = \Pi(\zeta\kappa_v
+    // \dot\Theta)$: its coefficients (returned), its point values (into
+    // `local.workspace.point_viscous_pressure`) and $\mathbf A_v =
+    // \mathbf M^{-1}\int\zeta\kappa_v\mathbf N\mathbf N^T dV\,\mathbf
+    // M^{-1}$ (into `stiffness`). $\kappa_v$ is the point's recorded $U''$,
+    // or with `local.request.store_viscosity` the current one
+    // (`local.workspace.point_volumetric_stiffness`), which is recorded.
+    typename DilatationProjection<dim>::ModeVector
+    volumetric_viscosity(
+      const DilatationProjection<dim>                      &projection,
+      const typename DilatationProjection<dim>::ModeMatrix &inverse_gram,
+      const std::vector<double>                            &point_rate,
+      CellContribution<dim>                                &local,
+      typename DilatationProjection<dim>::ModeMatrix       &stiffness) const;
 
-    // The volumetric viscous force of the mean-dilatation formulation of
-    // the cell, with the cell's reference volume, volume derivative
-    // $\mathbf g$ (`local.workspace.volume_gradient`) and $\partial(\mathbf g
-    // \cdot\mathbf v)/\partial\mathbf u$ (`local.workspace.rate_gradient`);
-    // the volume Hessian times $p_v$ came with the points.
-    // `volumetric_stiffness` is $U''(\Theta_e)$ of the current state,
-    // recorded with the viscosity.
+    // The volumetric viscous force $\mathbf G^T\boldsymbol\pi_v$ with the
+    // derivatives $\mathbf G$ of the volume's moments
+    // (`local.workspace.volume_gradients`) and, with a matrix, $\mathbf
+    // G^T\mathbf A_v(c_v\mathbf G + \mathbf H)$ with the derivatives
+    // $\mathbf H$ of the moments of the volume rate
+    // (`local.workspace.rate_gradients`, left out for a symmetric tangent);
+    // the damping matrix $\mathbf G^T\mathbf A_v\mathbf G$. The volume
+    // Hessian times $p_v$ came with the points.
     void
-    add_volumetric_contribution(const double           reference_volume,
-                                const double           volumetric_stiffness,
-                                CellContribution<dim> &local) const;
-
-    // The viscous pressure $p_v = \kappa_v\,\mathbf g\cdot\mathbf v/V_{0,e}$
-    // of the cell (zero for cells without damping).
-    double
-    viscous_pressure(const unsigned int    cell,
-                     const double          reference_volume,
-                     const Vector<double> &volume_gradient,
-                     const double         *cell_v) const;
+    add_volumetric_contribution(
+      const unsigned int                                    n_modes,
+      const typename DilatationProjection<dim>::ModeVector &coefficients,
+      const typename DilatationProjection<dim>::ModeMatrix &stiffness,
+      CellContribution<dim>                                &local) const;
 
   private:
     const CellGeometry<dim>  &geometry;
     const std::vector<double> cell_zeta;
     const bool                symmetric_tangent;
     // The positive part of the material tangent at the step's first state,
-    // per cell and point, [cell][q], and $U''$ per cell; written only in the
+    // and $U''(\Theta)$, per cell and point, [cell][q]; written only in the
     // assemblies of a state, where each cell's entries are written by the
     // thread that integrates that cell.
     mutable std::vector<SymmetricTensor<4, dim>> viscosity;
-    mutable std::vector<double>                  volumetric_viscosity;
+    mutable std::vector<double>                  volumetric_stiffness;
   };
 } // namespace SoftRobot
 

@@ -222,7 +222,7 @@ namespace SoftRobot
       prm.declare_entry(
         "Volumetric formulation",
         "displacement",
-        Patterns::Selection("displacement|mean dilatation"),
+        Patterns::Selection("displacement|mean dilatation|linear dilatation"),
         "How the volumetric energy U(J) of the 3D material enters. "
         "'displacement': at every quadrature point, the pure displacement "
         "formulation; it locks when the bulk modulus is large against the "
@@ -231,8 +231,11 @@ namespace SoftRobot
         "dilatation constant in each cell, condensed cell by cell, so that "
         "U acts on the cell's mean volume ratio; with quadratic elements it "
         "does not lock, with linear tetrahedra it is the same as "
-        "'displacement'. The reduced 1D and 2D models are incompressible by "
-        "construction and allow 'displacement' only.");
+        "'displacement'. 'linear dilatation': the same with pressure and "
+        "dilatation linear in each cell (discontinuous, step-44's Q2-DGP1), "
+        "four constraints per cell instead of one. The reduced 1D and 2D "
+        "models are incompressible by construction and allow 'displacement' "
+        "only.");
       prm.declare_entry(
         "Direct addresses",
         "true",
@@ -250,13 +253,15 @@ namespace SoftRobot
     FiniteElement::parse_parameters(ParameterHandler &prm)
     {
       prm.enter_subsection("Finite element");
-      degree            = prm.get_integer("Polynomial degree");
-      quadrature_points = prm.get_integer("Quadrature points");
-      volumetric_formulation =
-        (prm.get("Volumetric formulation") == "mean dilatation")
-          ? VolumetricFormulation::mean_dilatation
-          : VolumetricFormulation::displacement;
-      direct_addresses = prm.get_bool("Direct addresses");
+      degree                        = prm.get_integer("Polynomial degree");
+      quadrature_points             = prm.get_integer("Quadrature points");
+      const std::string formulation = prm.get("Volumetric formulation");
+      volumetric_formulation        = (formulation == "mean dilatation")
+                                        ? VolumetricFormulation::mean_dilatation
+                                      : (formulation == "linear dilatation")
+                                        ? VolumetricFormulation::linear_dilatation
+                                        : VolumetricFormulation::displacement;
+      direct_addresses              = prm.get_bool("Direct addresses");
       prm.leave_subsection();
     }
 
@@ -1386,8 +1391,8 @@ namespace SoftRobot
                              "Finite element/Volumetric formulation must be "
                              "'displacement' in " +
                              std::to_string(dimension) +
-                             "D ('mean dilatation' is for the compressible "
-                             "3D material only)."));
+                             "D ('mean dilatation' and 'linear dilatation' "
+                             "are for the compressible 3D material only)."));
       for (const auto &[id, letters] : fixed_components)
         {
           AssertThrow(!letters.empty() &&

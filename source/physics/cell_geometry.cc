@@ -35,6 +35,7 @@ namespace SoftRobot
         shape_dofs[a * dim + c] = i;
       }
 
+    unit_points = quadrature.get_points();
     for (unsigned int q = 0; q < n_q_points; ++q)
       for (unsigned int i = 0; i < dofs_per_cell; ++i)
         reference_gradients.push_back(

@@ -23,10 +23,7 @@ namespace SoftRobot
     const CellGeometry<dim>         &geometry,
     const bool                       symmetric_tangent)
     : geometry(geometry)
-    , mean_dilatation(
-        (dim == 3) &&
-        (parameters.volumetric_formulation ==
-         Parameters::FiniteElement::VolumetricFormulation::mean_dilatation))
+    , projection(geometry, dilatation_modes(parameters, geometry))
   {
     for (const auto &[id, material] : parameters.by_id)
       {
@@ -45,6 +42,44 @@ namespace SoftRobot
       viscous = std::make_unique<KelvinVoigtDamping<dim>>(geometry,
                                                           cell_zeta,
                                                           symmetric_tangent);
+  }
+
+
+
+  // The modes of the projected dilatation: none for the displacement
+  // formulation, the constant for the mean dilatation, the linear ones for
+  // the linear dilatation (3D only).
+  // A cell needs at least as many quadrature points as modes for the
+  // projection: linear tetrahedra (one point) have too few for the linear
+  // one.
+  template <int dim>
+  unsigned int
+  HyperelasticSolid<dim>::dilatation_modes(
+    const Parameters::AllParameters &parameters,
+    const CellGeometry<dim>         &geometry)
+  {
+    using Formulation = Parameters::FiniteElement::VolumetricFormulation;
+    if (dim != 3)
+      return 0;
+    switch (parameters.volumetric_formulation)
+      {
+        case Formulation::mean_dilatation:
+          return 1;
+        case Formulation::linear_dilatation:
+          AssertThrow(geometry.n_q_points >= dim + 1,
+                      ExcMessage(
+                        parameters.where() +
+                        "Finite element/Volumetric formulation = linear "
+                        "dilatation projects the dilatation on 4 modes per "
+                        "cell and needs as many quadrature points; these "
+                        "cells have " +
+                        std::to_string(geometry.n_q_points) +
+                        " (linear tetrahedra: use 'mean dilatation', or "
+                        "Polynomial degree = 2)."));
+          return dim + 1;
+        default:
+          return 0;
+      }
   }
 
 
@@ -76,42 +111,67 @@ namespace SoftRobot
 
 
 
-  // @sect4{HyperelasticSolid::cell_pressure}
+  // @sect4{HyperelasticSolid::cell_dilatation}
   //
-  // The mean-dilatation formulation (see the class documentation): the
-  // cell's mean volume ratio $\Theta = 1 + t$, its volumetric energy
-  // $V_e\,U(\Theta)$, the pressure $p = U'(\Theta)$ every point of the cell
-  // feels, and $U''(\Theta)/V_e$ for the tangent.
+  // The projected-dilatation formulations (see the class documentation):
+  // the projected volume change $\Theta - 1 = \Pi(J - 1)$ at the points,
+  // the volumetric energy $\int U(\Theta)$, the pressure $\bar p =
+  // \Pi\,U'(\Theta)$ every point feels, $U''(\Theta)$ at the points (the
+  // viscosity of the Kelvin-Voigt damping records it) and the stiffness of
+  // the moments $\mathbf A$. With one mode: the cell's mean volume ratio,
+  // its energy $V_e U(\Theta)$, the pressure $U'(\Theta)$ and $\mathbf A =
+  // U''(\Theta)/V_e$.
   template <int dim>
-  typename HyperelasticSolid<dim>::CellPressure
-  HyperelasticSolid<dim>::cell_pressure(const unsigned int                 cell,
-                                        const std::vector<Tensor<2, dim>> &H,
-                                        CellContribution<dim> &local) const
+  typename HyperelasticSolid<dim>::CellDilatation
+  HyperelasticSolid<dim>::cell_dilatation(const unsigned int cell,
+                                          const std::vector<Tensor<2, dim>> &H,
+                                          CellContribution<dim> &local) const
   {
-    CellPressure result;
-    if (!mean_dilatation)
-      return result;
-    const NeoHookeanEnergy<dim> &law           = *cell_law[cell];
-    double                       volume_change = 0.;
-    for (unsigned int q = 0; q < geometry.n_q_points; ++q)
+    CellDilatation      result;
+    const unsigned int  n_q       = geometry.n_q_points;
+    CellWorkspace<dim> &workspace = local.workspace;
+    workspace.point_volume_change.resize(n_q);
+    workspace.point_pressure.resize(n_q);
+    workspace.point_volumetric_stiffness.resize(n_q);
+    workspace.point_viscous_pressure.assign(n_q, 0.);
+    const NeoHookeanEnergy<dim> &law = *cell_law[cell];
+    result.inverse_gram              = projection.inverse_gram(cell);
+    for (unsigned int q = 0; q < n_q; ++q)
+      workspace.point_volume_change[q] = NeoHookeanEnergy<dim>::volume_change(
+        NeoHookeanEnergy<dim>::green_lagrange_strain(H[q]));
+    const auto           change = projection.project(cell,
+                                           result.inverse_gram,
+                                           workspace.point_volume_change);
+    std::vector<double> &t      = workspace.point_volume_change;
+    for (unsigned int q = 0; q < n_q; ++q)
       {
-        const double JxW = geometry.weight(cell, q);
-        result.volume += JxW;
-        volume_change += NeoHookeanEnergy<dim>::volume_change(
-                           NeoHookeanEnergy<dim>::green_lagrange_strain(H[q])) *
-                         JxW;
+        t[q] = projection.value(q, change);
+        if (!(t[q] > -1.))
+          {
+            local.inverted = true;
+            return result;
+          }
       }
-    const double t = volume_change / result.volume;
-    if (!(t > -1.))
-      local.inverted = true;
-    else
+    for (unsigned int q = 0; q < n_q; ++q)
       {
-        result.pressure             = law.volumetric_pressure(t);
-        result.volumetric_stiffness = law.volumetric_stiffness(t);
-        local.strain_energy += law.volumetric_energy(t) * result.volume;
+        workspace.point_pressure[q] = law.volumetric_pressure(t[q]);
+        workspace.point_volumetric_stiffness[q] =
+          law.volumetric_stiffness(t[q]);
+        local.strain_energy +=
+          law.volumetric_energy(t[q]) * geometry.weight(cell, q);
       }
+    // The pressure field: the projection of U'(Theta).
+    const auto pressure =
+      projection.project(cell, result.inverse_gram, workspace.point_pressure);
+    for (unsigned int q = 0; q < n_q; ++q)
+      workspace.point_pressure[q] = projection.value(q, pressure);
+    result.stiffness =
+      projection.weighted_stiffness(cell,
+                                    result.inverse_gram,
+                                    workspace.point_volumetric_stiffness);
     if (local.request.matrix || viscous_cell(local))
-      local.workspace.volume_gradient.reinit(geometry.dofs_per_cell);
+      workspace.volume_gradients.reinit(projection.n_modes(),
+                                        geometry.dofs_per_cell);
     return result;
   }
 
@@ -122,17 +182,16 @@ namespace SoftRobot
   // The point's share of the force, and of the lower triangles of the
   // tangent and the damping matrix. The damping uses the positive
   // semi-definite part of the material tangent (see
-  // positive_semidefinite_part()). With the mean-dilatation formulation the
-  // point also adds to the derivative of the cell's volume,
-  // $\partial(V_e\Theta)/\partial u_i = \int (\mathrm{cof}\,\mathbf
-  // F)_{c_i}\cdot\nabla_0\varphi_i\,dV$, for the rank-one part of the
+  // positive_semidefinite_part()). With a projected dilatation the point
+  // also adds to the derivatives of the moments of the volume, $G_{mi} =
+  // \partial b_m/\partial u_i = \int N_m(\mathrm{cof}\,\mathbf
+  // F)_{c_i}\cdot\nabla_0\varphi_i\,dV$, for the rank-n part of the
   // tangent.
   template <int dim>
   void
   HyperelasticSolid<dim>::add_point_contribution(
     const unsigned int     q,
     const Tensor<2, dim>  &H,
-    const CellPressure    &pressure,
     MaterialResponse<dim> &response,
     CellContribution<dim> &local) const
   {
@@ -158,20 +217,28 @@ namespace SoftRobot
     // state that the next step starts from.
     const bool with_tangent =
       with_matrix || (viscous_cell(local) && local.request.store_viscosity);
-    if (mean_dilatation)
-      law.evaluate_with_pressure(H, pressure.pressure, with_tangent, response);
+    const bool projected = projection.n_modes() > 0;
+    if (projected)
+      law.evaluate_with_pressure(H,
+                                 local.workspace.point_pressure[q],
+                                 with_tangent,
+                                 response);
     else if (with_tangent)
       law.evaluate(H, response);
     else
       law.evaluate_stress(H, response);
     local.strain_energy += response.energy * JxW;
 
-    if (mean_dilatation && (with_matrix || viscous_cell(local)))
+    if (projected && (with_matrix || viscous_cell(local)))
       {
         const Tensor<2, dim> cofactor = J * transpose(invert(F));
-        for (unsigned int i = 0; i < n; ++i)
-          local.workspace.volume_gradient(i) +=
-            (cofactor[comp[i]] * grad_phi[i]) * JxW;
+        for (unsigned int m = 0; m < projection.n_modes(); ++m)
+          {
+            const double w = projection.mode(q, m) * JxW;
+            for (unsigned int i = 0; i < n; ++i)
+              local.workspace.volume_gradients(m, i) +=
+                (cofactor[comp[i]] * grad_phi[i]) * w;
+          }
       }
 
     // The force $\int\delta\mathbf E_i:\mathbf S = \int\mathbf
@@ -203,7 +270,13 @@ namespace SoftRobot
         point.tangent = with_matrix ? &tangent : nullptr;
         point.damping_tangent =
           local.request.second_matrix ? &damping : nullptr;
-        point.volume_pressure = pressure.viscous_pressure;
+        if (projected)
+          {
+            point.volume_pressure = local.workspace.point_viscous_pressure[q];
+            point.n_modes         = projection.n_modes();
+            for (unsigned int m = 0; m < projection.n_modes(); ++m)
+              point.modes[m] = projection.mode(q, m);
+          }
         viscous->add_point_contribution(point, local);
       }
     if (with_matrix)
@@ -253,18 +326,22 @@ namespace SoftRobot
       reset_tangent_block(geometry, local.workspace.tangent_block);
     if (local.request.second_matrix)
       reset_tangent_block(geometry, local.workspace.damping_block);
-    const bool rate_gradient =
-      mean_dilatation && viscous_cell(local) && local.request.matrix;
-    local.workspace.rate_gradient.reinit(rate_gradient ? n : 0);
+    const bool projected = projection.n_modes() > 0;
+    const bool rate_gradients =
+      projected && viscous_cell(local) && local.request.matrix;
+    local.workspace.rate_gradients.reinit(rate_gradients ? projection.n_modes()
+                                                         : 0,
+                                          rate_gradients ? n : 0);
 
-    CellPressure pressure = cell_pressure(cell, H, local);
-    // The volumetric viscous pressure, which the points' tangent needs,
-    // from the cell's volume rate $\sum_q w_q\,\mathrm{cof}\,\mathbf F:
-    // \mathbf L_0$ before the points are integrated.
-    if (mean_dilatation && viscous_cell(local) && local.request.matrix &&
-        !local.inverted)
+    CellDilatation dilatation;
+    if (projected)
+      dilatation = cell_dilatation(cell, H, local);
+    // The volumetric viscous pressure, whose point values the tangent
+    // needs, from the rates $\dot J = \mathrm{cof}\,\mathbf F:\mathbf L_0$
+    // before the points are integrated.
+    if (projected && viscous_cell(local) && !local.inverted)
       {
-        double volume_rate = 0.;
+        std::vector<double> rate(geometry.n_q_points);
         for (unsigned int q = 0; q < geometry.n_q_points; ++q)
           {
             Tensor<2, dim> F = H[q];
@@ -272,20 +349,24 @@ namespace SoftRobot
               F[d][d] += 1.;
             const Tensor<2, dim> cofactor =
               determinant(F) * transpose(invert(F));
-            volume_rate +=
-              scalar_product(cofactor, local.workspace.velocity_gradients[q]) *
-              geometry.weight(cell, q);
+            rate[q] =
+              scalar_product(cofactor, local.workspace.velocity_gradients[q]);
           }
-        pressure.viscous_pressure = viscous->cell_viscous_pressure(
-          pressure.volume, volume_rate, pressure.volumetric_stiffness, local);
+        dilatation.viscous_pressure =
+          viscous->volumetric_viscosity(projection,
+                                        dilatation.inverse_gram,
+                                        rate,
+                                        local,
+                                        dilatation.viscous_stiffness);
       }
     MaterialResponse<dim> response;
     for (unsigned int q = 0; q < geometry.n_q_points; ++q)
-      add_point_contribution(q, H[q], pressure, response, local);
+      add_point_contribution(q, H[q], response, local);
 
-    if (mean_dilatation && viscous_cell(local) && !local.inverted)
-      viscous->add_volumetric_contribution(pressure.volume,
-                                           pressure.volumetric_stiffness,
+    if (projected && viscous_cell(local) && !local.inverted)
+      viscous->add_volumetric_contribution(projection.n_modes(),
+                                           dilatation.viscous_pressure,
+                                           dilatation.viscous_stiffness,
                                            local);
     if (!local.request.matrix)
       {
@@ -300,19 +381,30 @@ namespace SoftRobot
           }
         return;
       }
-    if (mean_dilatation && !local.inverted)
+    // The rank-n term $\mathbf G^T\mathbf A\mathbf G$ of the projected
+    // dilatation (lower triangle), and in the lagged damping matrix $\zeta$
+    // times it.
+    if (projected && !local.inverted)
       {
-        const Vector<double> &g = local.workspace.volume_gradient;
-        const double factor = pressure.volumetric_stiffness / pressure.volume;
-        const double zeta   = cell_zeta[cell];
+        const FullMatrix<double> &G       = local.workspace.volume_gradients;
+        const unsigned int        n_modes = projection.n_modes();
+        FullMatrix<double>        AG(n_modes, n);
+        for (unsigned int m = 0; m < n_modes; ++m)
+          for (unsigned int k = 0; k < n_modes; ++k)
+            for (unsigned int j = 0; j < n; ++j)
+              AG(m, j) += dilatation.stiffness[m][k] * G(k, j);
+        const double zeta = cell_zeta[cell];
         const bool   damped =
           !viscous && local.request.second_matrix && zeta > 0.;
         for (unsigned int i = 0; i < n; ++i)
           for (unsigned int j = 0; j <= i; ++j)
             {
-              local.matrix(i, j) += factor * g(i) * g(j);
+              double value = 0.;
+              for (unsigned int m = 0; m < n_modes; ++m)
+                value += G(m, i) * AG(m, j);
+              local.matrix(i, j) += value;
               if (damped)
-                local.second_matrix(i, j) += zeta * factor * g(i) * g(j);
+                local.second_matrix(i, j) += zeta * value;
             }
       }
     for (unsigned int i = 0; i < n; ++i)
@@ -342,31 +434,25 @@ namespace SoftRobot
     geometry.cell_gradients(cell, grad_phi);
     std::vector<Tensor<2, dim>> H;
     displacement_gradients(grad_phi, cell_u, H);
-    const NeoHookeanEnergy<dim> &law      = *cell_law[cell];
-    double                       pressure = 0.;
-    if (mean_dilatation)
-      {
-        double volume = 0., volume_change = 0.;
-        for (unsigned int q = 0; q < geometry.n_q_points; ++q)
-          {
-            volume += geometry.weight(cell, q);
-            volume_change +=
-              NeoHookeanEnergy<dim>::volume_change(
-                NeoHookeanEnergy<dim>::green_lagrange_strain(H[q])) *
-              geometry.weight(cell, q);
-          }
-        pressure = law.volumetric_pressure(volume_change / volume);
-      }
+    const NeoHookeanEnergy<dim> &law = *cell_law[cell];
+    CellContribution<dim>        local;
+    local.cell = cell;
+    if (projection.n_modes() > 0)
+      cell_dilatation(cell, H, local);
     MaterialResponse<dim>   response;
     SymmetricTensor<2, dim> mean_sigma;
     double                  mean_J = 0.;
-    for (const Tensor<2, dim> &G : H)
+    for (unsigned int q = 0; q < H.size(); ++q)
       {
-        Tensor<2, dim> F = G;
+        const Tensor<2, dim> &G = H[q];
+        Tensor<2, dim>        F = G;
         for (unsigned int d = 0; d < dim; ++d)
           F[d][d] += 1.;
-        if (mean_dilatation)
-          law.evaluate_with_pressure(G, pressure, false, response);
+        if (projection.n_modes() > 0 && !local.inverted)
+          law.evaluate_with_pressure(G,
+                                     local.workspace.point_pressure[q],
+                                     false,
+                                     response);
         else
           law.evaluate_stress(G, response);
         mean_sigma += law.cauchy_stress(F, response.second_piola);

@@ -20,7 +20,7 @@ namespace SoftRobot
     , cell_zeta(cell_zeta)
     , symmetric_tangent(symmetric_tangent)
     , viscosity(geometry.n_cells * geometry.n_q_points)
-    , volumetric_viscosity(geometry.n_cells, 0.)
+    , volumetric_stiffness(geometry.n_cells * geometry.n_q_points, 0.)
   {
     Assert(cell_zeta.size() == geometry.n_cells, ExcInternalError());
   }
@@ -86,113 +86,117 @@ namespace SoftRobot
       return;
     add_pulled_tangent(F, D, L, zeta, tangent);
 
-    // In the mean-dilatation formulation also the derivative of the cell's
-    // volume rate, $\partial(\mathbf g\cdot\mathbf v)/\partial u_j = \int
-    // \partial(\mathrm{cof}\,\mathbf F:\mathbf L_0)/\partial\mathbf F :
-    // \nabla_0\mathbf N_j\,dV$, for the non-symmetric volumetric term.
-    if (local.workspace.rate_gradient.size() == n)
+    // With a projected dilatation also the derivatives of the moments of
+    // the volume rate, $H_{mj} = \partial(\mathbf G\mathbf v)_m/\partial
+    // u_j = \int N_m\,\partial(\mathrm{cof}\,\mathbf F:\mathbf
+    // L_0)/\partial\mathbf F:\nabla_0\mathbf N_j\,dV$, for the
+    // non-symmetric volumetric term.
+    if (local.workspace.rate_gradients.n() == n)
       {
         const Tensor<2, dim> F_inverse = invert(F);
         const double         J         = determinant(F);
         const Tensor<2, dim> M =
           J * (trace(F_inverse * L) * transpose(F_inverse) -
                transpose(F_inverse * L * F_inverse));
-        for (unsigned int j = 0; j < n; ++j)
-          local.workspace.rate_gradient(j) += (M[comp[j]] * grad_phi[j]) * JxW;
+        for (unsigned int m = 0; m < point.n_modes; ++m)
+          {
+            const double w = point.modes[m] * JxW;
+            for (unsigned int j = 0; j < n; ++j)
+              local.workspace.rate_gradients(m, j) +=
+                (M[comp[j]] * grad_phi[j]) * w;
+          }
       }
   }
 
 
 
-  // @sect4{KelvinVoigtDamping::cell_viscous_pressure}
+  // @sect4{KelvinVoigtDamping::volumetric_viscosity}
   template <int dim>
-  double
-  KelvinVoigtDamping<dim>::cell_viscous_pressure(
-    const double                 reference_volume,
-    const double                 volume_rate,
-    const double                 volumetric_stiffness,
-    const CellContribution<dim> &local) const
+  typename DilatationProjection<dim>::ModeVector
+  KelvinVoigtDamping<dim>::volumetric_viscosity(
+    const DilatationProjection<dim>                      &projection,
+    const typename DilatationProjection<dim>::ModeMatrix &inverse_gram,
+    const std::vector<double>                            &point_rate,
+    CellContribution<dim>                                &local,
+    typename DilatationProjection<dim>::ModeMatrix       &stiffness) const
   {
-    const double stiffness = local.request.store_viscosity
-                               ? volumetric_stiffness
-                               : volumetric_viscosity[local.cell];
-    return cell_zeta[local.cell] * stiffness * volume_rate / reference_volume;
-  }
-
-
-
-  // @sect4{KelvinVoigtDamping::viscous_pressure}
-  template <int dim>
-  double
-  KelvinVoigtDamping<dim>::viscous_pressure(
-    const unsigned int    cell,
-    const double          reference_volume,
-    const Vector<double> &volume_gradient,
-    const double         *cell_v) const
-  {
-    double rate = 0.;
-    for (unsigned int i = 0; i < volume_gradient.size(); ++i)
-      rate += volume_gradient(i) * cell_v[i];
-    return cell_zeta[cell] * volumetric_viscosity[cell] * rate /
-           reference_volume;
+    const unsigned int cell    = local.cell;
+    const unsigned int n_q     = geometry.n_q_points;
+    const double       zeta    = cell_zeta[cell];
+    double            *kappa_v = &volumetric_stiffness[cell * n_q];
+    if (local.request.store_viscosity)
+      for (unsigned int q = 0; q < n_q; ++q)
+        kappa_v[q] = local.workspace.point_volumetric_stiffness[q];
+    const auto rate = projection.project(cell, inverse_gram, point_rate);
+    std::vector<double> viscosity(n_q), stress(n_q);
+    for (unsigned int q = 0; q < n_q; ++q)
+      {
+        viscosity[q] = zeta * kappa_v[q];
+        stress[q]    = viscosity[q] * projection.value(q, rate);
+      }
+    const auto coefficients = projection.project(cell, inverse_gram, stress);
+    for (unsigned int q = 0; q < n_q; ++q)
+      local.workspace.point_viscous_pressure[q] =
+        projection.value(q, coefficients);
+    stiffness = projection.weighted_stiffness(cell, inverse_gram, viscosity);
+    return coefficients;
   }
 
 
 
   // @sect4{KelvinVoigtDamping::add_volumetric_contribution}
-  //
-  // The force $p_v\mathbf g$ and, with a matrix, $\kappa_v V_{0,e}^{-1}
-  // (c_v\mathbf g\mathbf g^T + \mathbf g\,(\partial(\mathbf g\cdot\mathbf
-  // v)/\partial\mathbf u)^T)$; the term $p_v\,\partial\mathbf g/\partial
-  // \mathbf u$, from the second derivatives of $J$, was added at the
-  // cell's points.
   template <int dim>
   void
   KelvinVoigtDamping<dim>::add_volumetric_contribution(
-    const double           reference_volume,
-    const double           volumetric_stiffness,
-    CellContribution<dim> &local) const
+    const unsigned int                                    n_modes,
+    const typename DilatationProjection<dim>::ModeVector &coefficients,
+    const typename DilatationProjection<dim>::ModeMatrix &stiffness,
+    CellContribution<dim>                                &local) const
   {
-    const unsigned int cell = local.cell;
-    const double       zeta = cell_zeta[cell];
-    if (!(zeta > 0.))
+    if (!(cell_zeta[local.cell] > 0.))
       return;
-    if (local.request.store_viscosity)
-      volumetric_viscosity[cell] = volumetric_stiffness;
-    const unsigned int    n = geometry.dofs_per_cell;
-    const Vector<double> &g = local.workspace.volume_gradient;
-    const double          p_v =
-      viscous_pressure(cell, reference_volume, g, local.input_values[1]);
-    for (unsigned int i = 0; i < n; ++i)
-      local.second_force(i) += p_v * g(i);
+    const unsigned int        n = geometry.dofs_per_cell;
+    const FullMatrix<double> &G = local.workspace.volume_gradients;
+    for (unsigned int m = 0; m < n_modes; ++m)
+      for (unsigned int i = 0; i < n; ++i)
+        local.second_force(i) += coefficients[m] * G(m, i);
 
     const bool with_matrix  = local.request.matrix;
     const bool with_damping = local.request.second_matrix;
     if (!with_matrix && !with_damping)
       return;
-    const double factor = volumetric_viscosity[cell] / reference_volume;
-    const double c_v    = local.request.velocity_coefficient;
+    // $\mathbf A_v\mathbf G$, then the lower triangle of $\mathbf
+    // G^T\mathbf A_v\mathbf G$.
+    FullMatrix<double> AG(n_modes, n);
+    for (unsigned int m = 0; m < n_modes; ++m)
+      for (unsigned int k = 0; k < n_modes; ++k)
+        for (unsigned int j = 0; j < n; ++j)
+          AG(m, j) += stiffness[m][k] * G(k, j);
+    const double c_v = local.request.velocity_coefficient;
     for (unsigned int i = 0; i < n; ++i)
       for (unsigned int j = 0; j <= i; ++j)
         {
-          const double damping = zeta * factor * g(i) * g(j);
+          double damping = 0.;
+          for (unsigned int m = 0; m < n_modes; ++m)
+            damping += G(m, i) * AG(m, j);
           if (with_damping)
             local.second_matrix(i, j) += damping;
           if (with_matrix)
             local.matrix(i, j) += c_v * damping;
         }
-    if (!with_matrix)
+    if (!with_matrix || symmetric_tangent)
       return;
-
-    if (!symmetric_tangent)
-      {
-        const Vector<double> &h = local.workspace.rate_gradient;
-        for (unsigned int i = 0; i < n; ++i)
-          for (unsigned int j = 0; j < n; ++j)
-            local.workspace.nonsymmetric_matrix(i, j) +=
-              zeta * factor * g(i) * h(j);
-        local.workspace.has_nonsymmetric_part = true;
-      }
+    const FullMatrix<double> &H = local.workspace.rate_gradients;
+    for (unsigned int i = 0; i < n; ++i)
+      for (unsigned int j = 0; j < n; ++j)
+        {
+          double value = 0.;
+          for (unsigned int m = 0; m < n_modes; ++m)
+            for (unsigned int k = 0; k < n_modes; ++k)
+              value += G(m, i) * stiffness[m][k] * H(k, j);
+          local.workspace.nonsymmetric_matrix(i, j) += value;
+        }
+    local.workspace.has_nonsymmetric_part = true;
   }
 
 
