@@ -375,7 +375,7 @@ namespace SoftRobot
                 ExcMessage("The bellows design: the neck must span the bottom "
                            "of the first cavity valley."));
 
-    // @sect5{The stations of the wall}
+    // <em>The stations of the wall.</em>
     //
     // Along the wall from the bottom of the first cavity valley to the
     // bottom of the last. A valley's larger side is the cavity's, a crest's
@@ -454,7 +454,7 @@ namespace SoftRobot
       builder.add_ruled(inner, outer, linspace(0., 1., n_t), 1);
     }
 
-    // @sect5{The base ring and the end cap}
+    // <em>The base ring and the end cap.</em>
     //
     // At the base: the patch between the outer side of the half valley,
     // the flank up to the neck's corner and the neck (one cell across); the
@@ -517,7 +517,7 @@ namespace SoftRobot
     block_r_levels.push_back(d.block_radius());
     builder.add_rectangle(block_x_levels, block_r_levels, 2);
 
-    // @sect5{Boundary edges}
+    // <em>Boundary edges.</em>
     //
     // An edge of one quadrilateral only is on the boundary. Its id follows
     // from where it lies: on the base face, on the block, on the cavity
@@ -661,7 +661,7 @@ namespace SoftRobot
                    true);
       }
 
-    // @sect5{The cores}
+    // <em>The cores.</em>
     //
     // The core's square has the half width a = r_c / 2 and m = (cells per
     // quarter turn) / 2 cells per half side; its grid spans [0, a] (quarter
@@ -798,7 +798,7 @@ namespace SoftRobot
     triangulation.set_manifold(
       1, CylindricalManifold<3>(Tensor<1, 3>({1., 0., 0.}), Point<3>()));
 
-    // @sect5{Boundary ids}
+    // <em>Boundary ids.</em>
     for (const auto &cell : triangulation.active_cell_iterators())
       for (const unsigned int f : cell->face_indices())
         if (cell->face(f)->at_boundary())
