@@ -40,6 +40,10 @@
 #                              the same for experiments 2 and 3 (the planar and
 #                              the spherical pendulum); writes
 #                              doc/reference_swing.md
+#   ./soft-robot.sh hex-reference
+#                              experiment 1 on the hexahedral mesh (quadratic
+#                              hexahedra, linear dilatation) refined in each
+#                              direction; writes doc/reference_hex.md
 #
 # Build directories: build-release/ and build-debug/ beside this script.
 set -euo pipefail
@@ -115,11 +119,13 @@ case "${1:-}" in
     script=${1//-/_}
     /usr/bin/python3 "doc/$script/run_$script.py" build-release "${@:2}"
     ;;
-  swing-reference)
-    packages+=(python3-numpy python3-matplotlib)
+  swing-reference|hex-reference)
+    # gmsh for the medium tetrahedral mesh with the cylindrical block
+    packages+=(python3-numpy python3-matplotlib gmsh)
     install_missing_packages
     build Release build-release -DSOFT_ROBOT_BUILD_TESTS=OFF
-    /usr/bin/python3 doc/reference/run_swing_reference.py build-release "${@:2}"
+    script=${1%-reference}
+    /usr/bin/python3 "doc/reference/run_${script}_reference.py" build-release "${@:2}"
     ;;
   validate)
     packages+=(python3-matplotlib python3-numpy)
@@ -159,7 +165,7 @@ case "${1:-}" in
     echo "Wrote doc/validation.md"
     ;;
   *)
-    echo "Usage: $0 demo|test|validate|benchmark|stability|locking|error-vs-runtime|twisting-column|damping|pneumatics|reference|swing-reference" >&2
+    echo "Usage: $0 demo|test|validate|benchmark|stability|locking|error-vs-runtime|twisting-column|damping|pneumatics|reference|swing-reference|hex-reference" >&2
     exit 2
     ;;
 esac
