@@ -68,7 +68,8 @@ CASES = ([(f"ds20_{DEFAULT}_dt{dt:g}", "ds20", DEFAULT, dt, [])
           for dt in (0.01, 0.005, 0.0025)] +
          [(f"ds20_{mesh}_dt0.01", "ds20", mesh, 0.01, [])
           for mesh in MESHES if mesh != DEFAULT] +
-         [("ds20_hex-2-6-2-2_dt0.005", "ds20", "hex-2-6-2-2", 0.005, [])] +
+         [(f"ds20_{mesh}_dt0.005", "ds20", mesh, 0.005, [])
+          for mesh in ("hex-2-6-2-2", "hex-1-3-1-2-refined")] +
          [(f"{s}_{mesh}_dt0.01", s, mesh, 0.01, [])
           for s in ("ds30", "ef50")
           for mesh in (DEFAULT, "hex-2-6-2-2", "hex-1-3-1-2-refined")] +

@@ -358,6 +358,20 @@ namespace SoftRobot
             }
         }
 
+      // The mean dilatation on quadratic hexahedra (Q2-P0) runs, but has
+      // spurious soft modes in bending (doc/introduction.md); on the
+      // first hexahedral mesh of the bellows its static stretch is 70 %
+      // too large (doc/reference_hex.md).
+      using Formulation = Parameters::FiniteElement::VolumetricFormulation;
+      if (dim == 3 &&
+          parameters.volumetric_formulation == Formulation::mean_dilatation &&
+          parameters.degree > 1 && triangulation.n_active_cells() > 0 &&
+          triangulation.begin_active()->reference_cell().is_hyper_cube())
+        warnings.push_back(
+          "Warning: Finite element/Volumetric formulation = mean dilatation "
+          "on hexahedra of degree 2 has spurious soft bending modes; "
+          "'linear dilatation' does not.");
+
       if (parameters.traction_boundary_ids.empty())
         {
           if (!parameters.traction_expression.empty())
