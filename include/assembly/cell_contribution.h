@@ -71,9 +71,14 @@ namespace SoftRobot
     // [mode][dof], and of the moments of the volume rate, $\partial(\mathbf
     // G\mathbf v)/\partial\mathbf u$ (see KelvinVoigtDamping); per point
     // the projected volume change $\Theta - 1$, the pressure, the
-    // volumetric stiffness $U''(\Theta)$ and the viscous pressure.
+    // volumetric stiffness $U''(\Theta)$ and the viscous pressure; the
+    // volume rate and the volumetric viscosity per point, and a buffer for
+    // products of a mode matrix with $\mathbf G$.
     FullMatrix<double>  volume_gradients;
     FullMatrix<double>  rate_gradients;
+    FullMatrix<double>  mode_products;
+    std::vector<double> point_volume_rate;
+    std::vector<double> point_viscosity;
     std::vector<double> point_volume_change;
     std::vector<double> point_pressure;
     std::vector<double> point_volumetric_stiffness;

@@ -34,6 +34,7 @@
 #define soft_robot_physics_dilatation_projection_h
 
 #include <array>
+#include <deal.II/lac/full_matrix.h>
 #include <physics/cell_geometry.h>
 #include <vector>
 
@@ -89,6 +90,20 @@ namespace SoftRobot
     weighted_stiffness(const unsigned int         cell,
                        const ModeMatrix          &inverse_gram,
                        const std::vector<double> &g) const;
+
+    // The lower triangle of the rank-n term $\mathbf G^T\mathbf A\mathbf G$
+    // for the moments' derivatives G ([mode][dof], as many modes as rows):
+    // `scale_1` times it
+    // added to `matrix_1`, `scale_2` times it to `matrix_2` (either may be
+    // null). `AG` is a buffer for $\mathbf A\mathbf G$, resized here.
+    static void
+    add_rank_n_term(const ModeMatrix         &A,
+                    const FullMatrix<double> &G,
+                    FullMatrix<double>       &AG,
+                    FullMatrix<double>       *matrix_1,
+                    const double              scale_1,
+                    FullMatrix<double>       *matrix_2,
+                    const double              scale_2);
 
   private:
     const CellGeometry<dim> &geometry;

@@ -122,6 +122,38 @@ namespace SoftRobot
 
 
 
+  template <int dim>
+  void
+  DilatationProjection<dim>::add_rank_n_term(const ModeMatrix         &A,
+                                             const FullMatrix<double> &G,
+                                             FullMatrix<double>       &AG,
+                                             FullMatrix<double>       *matrix_1,
+                                             const double              scale_1,
+                                             FullMatrix<double>       *matrix_2,
+                                             const double              scale_2)
+  {
+    const unsigned int n      = G.m();
+    const unsigned int n_dofs = G.n();
+    AG.reinit(n, n_dofs);
+    for (unsigned int m = 0; m < n; ++m)
+      for (unsigned int k = 0; k < n; ++k)
+        for (unsigned int j = 0; j < n_dofs; ++j)
+          AG(m, j) += A[m][k] * G(k, j);
+    for (unsigned int i = 0; i < n_dofs; ++i)
+      for (unsigned int j = 0; j <= i; ++j)
+        {
+          double value = 0.;
+          for (unsigned int m = 0; m < n; ++m)
+            value += G(m, i) * AG(m, j);
+          if (matrix_1)
+            (*matrix_1)(i, j) += scale_1 * value;
+          if (matrix_2)
+            (*matrix_2)(i, j) += scale_2 * value;
+        }
+  }
+
+
+
 #define SOFT_ROBOT_INSTANTIATE(dim) template class DilatationProjection<dim>;
   SOFT_ROBOT_FOR_EACH_DIMENSION(SOFT_ROBOT_INSTANTIATE)
 #undef SOFT_ROBOT_INSTANTIATE

@@ -341,7 +341,8 @@ namespace SoftRobot
     // before the points are integrated.
     if (projected && viscous_cell(local) && !local.inverted)
       {
-        std::vector<double> rate(geometry.n_q_points);
+        std::vector<double> &rate = local.workspace.point_volume_rate;
+        rate.resize(geometry.n_q_points);
         for (unsigned int q = 0; q < geometry.n_q_points; ++q)
           {
             Tensor<2, dim> F = H[q];
@@ -386,26 +387,16 @@ namespace SoftRobot
     // times it.
     if (projected && !local.inverted)
       {
-        const FullMatrix<double> &G       = local.workspace.volume_gradients;
-        const unsigned int        n_modes = projection.n_modes();
-        FullMatrix<double>        AG(n_modes, n);
-        for (unsigned int m = 0; m < n_modes; ++m)
-          for (unsigned int k = 0; k < n_modes; ++k)
-            for (unsigned int j = 0; j < n; ++j)
-              AG(m, j) += dilatation.stiffness[m][k] * G(k, j);
         const double zeta = cell_zeta[cell];
         const bool   damped =
           !viscous && local.request.second_matrix && zeta > 0.;
-        for (unsigned int i = 0; i < n; ++i)
-          for (unsigned int j = 0; j <= i; ++j)
-            {
-              double value = 0.;
-              for (unsigned int m = 0; m < n_modes; ++m)
-                value += G(m, i) * AG(m, j);
-              local.matrix(i, j) += value;
-              if (damped)
-                local.second_matrix(i, j) += zeta * value;
-            }
+        projection.add_rank_n_term(dilatation.stiffness,
+                                   local.workspace.volume_gradients,
+                                   local.workspace.mode_products,
+                                   &local.matrix,
+                                   1.,
+                                   damped ? &local.second_matrix : nullptr,
+                                   zeta);
       }
     for (unsigned int i = 0; i < n; ++i)
       for (unsigned int j = i + 1; j < n; ++j)

@@ -128,7 +128,11 @@ namespace SoftRobot
       for (unsigned int q = 0; q < n_q; ++q)
         kappa_v[q] = local.workspace.point_volumetric_stiffness[q];
     const auto rate = projection.project(cell, inverse_gram, point_rate);
-    std::vector<double> viscosity(n_q), stress(n_q);
+    // The viscous stress at the points, then its projection, in place.
+    std::vector<double> &viscosity = local.workspace.point_viscosity;
+    std::vector<double> &stress    = local.workspace.point_viscous_pressure;
+    viscosity.resize(n_q);
+    stress.resize(n_q);
     for (unsigned int q = 0; q < n_q; ++q)
       {
         viscosity[q] = zeta * kappa_v[q];
@@ -136,8 +140,7 @@ namespace SoftRobot
       }
     const auto coefficients = projection.project(cell, inverse_gram, stress);
     for (unsigned int q = 0; q < n_q; ++q)
-      local.workspace.point_viscous_pressure[q] =
-        projection.value(q, coefficients);
+      stress[q] = projection.value(q, coefficients);
     stiffness = projection.weighted_stiffness(cell, inverse_gram, viscosity);
     return coefficients;
   }
@@ -165,25 +168,15 @@ namespace SoftRobot
     const bool with_damping = local.request.second_matrix;
     if (!with_matrix && !with_damping)
       return;
-    // $\mathbf A_v\mathbf G$, then the lower triangle of $\mathbf
-    // G^T\mathbf A_v\mathbf G$.
-    FullMatrix<double> AG(n_modes, n);
-    for (unsigned int m = 0; m < n_modes; ++m)
-      for (unsigned int k = 0; k < n_modes; ++k)
-        for (unsigned int j = 0; j < n; ++j)
-          AG(m, j) += stiffness[m][k] * G(k, j);
-    const double c_v = local.request.velocity_coefficient;
-    for (unsigned int i = 0; i < n; ++i)
-      for (unsigned int j = 0; j <= i; ++j)
-        {
-          double damping = 0.;
-          for (unsigned int m = 0; m < n_modes; ++m)
-            damping += G(m, i) * AG(m, j);
-          if (with_damping)
-            local.second_matrix(i, j) += damping;
-          if (with_matrix)
-            local.matrix(i, j) += c_v * damping;
-        }
+    // The lower triangle of $\mathbf G^T\mathbf A_v\mathbf G$.
+    DilatationProjection<dim>::add_rank_n_term(
+      stiffness,
+      G,
+      local.workspace.mode_products,
+      with_damping ? &local.second_matrix : nullptr,
+      1.,
+      with_matrix ? &local.matrix : nullptr,
+      local.request.velocity_coefficient);
     if (!with_matrix || symmetric_tangent)
       return;
     const FullMatrix<double> &H = local.workspace.rate_gradients;
