@@ -194,10 +194,11 @@ namespace
   }
 
   Parameters::AllParameters
-  read(const std::string &filename)
+  read(const std::string              &filename,
+       const std::vector<std::string> &overrides = {})
   {
     Parameters::AllParameters parameters;
-    parameters.read_file(filename);
+    parameters.read_file(filename, overrides);
     return parameters;
   }
 
@@ -509,9 +510,10 @@ namespace
   }
 
   double
-  calibrate_shear_modulus(const std::string &scene)
+  calibrate_shear_modulus(const std::string              &scene,
+                          const std::vector<std::string> &overrides)
   {
-    const Parameters::AllParameters parameters = read(scene);
+    const Parameters::AllParameters parameters = read(scene, overrides);
     const Parameters::Material     &material   = parameters.by_id.at(1);
     AssertThrow(!material.silicone.empty(),
                 ExcMessage(scene + ": Material 1 must name a Silicone of the "
@@ -560,10 +562,13 @@ namespace
          "      solves of the 3D actuator; --check: exit with 1 unless "
          "the 1D and 2D\n"
          "      scene files hold these numbers (to 0.5 %)\n"
-         "  calibrate shear-modulus <experiment-1 scene>\n"
+         "  calibrate shear-modulus <experiment-1 scene> "
+         "[--set 'Subsection/Entry=value']...\n"
          "      the shear modulus with which the scene rings at its "
          "silicone's measured\n"
-         "      experiment-1 frequency\n";
+         "      experiment-1 frequency; each --set changes one entry of the "
+         "scene, as for\n"
+         "      soft-robot (another mesh, element or time step)\n";
   }
 } // namespace
 
@@ -595,9 +600,20 @@ main(int argc, char *argv[])
             return 1;
           return 0;
         }
-      if (arguments.size() == 2 && arguments[0] == "shear-modulus")
+      if (arguments.size() >= 2 && arguments.size() % 2 == 0 &&
+          arguments[0] == "shear-modulus")
         {
-          calibrate_shear_modulus(arguments[1]);
+          std::vector<std::string> overrides;
+          for (unsigned int i = 2; i < arguments.size(); i += 2)
+            {
+              if (arguments[i] != "--set")
+                {
+                  print_usage();
+                  return 1;
+                }
+              overrides.push_back(arguments[i + 1]);
+            }
+          calibrate_shear_modulus(arguments[1], overrides);
           return 0;
         }
       print_usage();

@@ -78,6 +78,7 @@
 #include <physics/cell_geometry.h>
 #include <physics/dilatation_projection.h>
 #include <physics/kelvin_voigt_damping.h>
+#include <physics/point_tangent.h>
 #include <utility>
 #include <vector>
 
@@ -145,6 +146,16 @@ namespace SoftRobot
       return viscous && local.input_values.size() > 1;
     }
 
+    // Whether the cell's tangent block is symmetric: unless the viscous
+    // stress adds its non-symmetric part.
+    Symmetry
+    tangent_symmetry(const CellContribution<dim> &local) const
+    {
+      return (symmetric_tangent || !viscous_cell(local)) ?
+               Symmetry::symmetric :
+               Symmetry::general;
+    }
+
     // The cell's displacement gradients at its quadrature points, from
     // its nodal values and its shape-function gradients [q][i] (also used
     // for the velocity gradients).
@@ -184,6 +195,7 @@ namespace SoftRobot
 
     const CellGeometry<dim>                            &geometry;
     const DilatationProjection<dim>                     projection;
+    const bool                                          symmetric_tangent;
     bool                                                damped = false;
     std::map<types::material_id, NeoHookeanEnergy<dim>> laws;
     // Per cell: its law and damping coefficient $\zeta$.

@@ -67,19 +67,31 @@ namespace SoftRobot
                      const double        factor,
                      Tensor<4, 3>       &A);
 
+  // Whether a point's tensor has the major symmetry $\mathcal A_{cJkL} =
+  // \mathcal A_{kLcJ}$ (the second derivative of an energy or of a
+  // dissipation potential), so that the block of the pair (a, b) is the
+  // transpose of that of (b, a) and only $b \le a$ is formed: half the work.
+  enum class Symmetry
+  {
+    symmetric,
+    general
+  };
+
   // The point's share $\sum_{J,L}\partial_J\varphi_a\mathcal
   // A_{cJkL}\partial_L\varphi_b\,w$ of every pair of shape functions,
   // `grad_phi` being the gradients of the cell's shape functions at the
   // point (indexed by dof), added to `block`, the cell's matrix by shape
   // functions: entry ((a dim + c) dim + k) n + b for n shape functions
   // (resized and zeroed by the caller, see reset_tangent_block()). All pairs
-  // are formed, in loops over b that the compiler vectorizes.
+  // are formed (with Symmetry::symmetric those with b <= a), in loops over
+  // b that the compiler vectorizes.
   template <int dim>
   void
   add_point_tangent(const CellGeometry<dim> &geometry,
                     const Tensor<1, dim>    *grad_phi,
                     const Tensor<4, dim>    &A,
                     const double             weight,
+                    const Symmetry           symmetry,
                     std::vector<double>     &block);
 
   // A block of the cell's size, zero.
@@ -88,11 +100,13 @@ namespace SoftRobot
   reset_tangent_block(const CellGeometry<dim> &geometry,
                       std::vector<double>     &block);
 
-  // Adds a block to the cell matrix in dof numbering, all of it.
+  // Adds a block to the cell matrix in dof numbering, all of it; a
+  // symmetric block's pairs b > a from their transposes.
   template <int dim>
   void
   add_tangent_block(const CellGeometry<dim>   &geometry,
                     const std::vector<double> &block,
+                    const Symmetry             symmetry,
                     FullMatrix<double>        &matrix);
 } // namespace SoftRobot
 

@@ -24,6 +24,7 @@ namespace SoftRobot
     const bool                       symmetric_tangent)
     : geometry(geometry)
     , projection(geometry, dilatation_modes(parameters, geometry))
+    , symmetric_tangent(symmetric_tangent)
   {
     for (const auto &[id, material] : parameters.by_id)
       {
@@ -290,12 +291,20 @@ namespace SoftRobot
                              F,
                              zeta,
                              damping);
-        add_point_tangent(
-          geometry, grad_phi, tangent, JxW, local.workspace.tangent_block);
+        add_point_tangent(geometry,
+                          grad_phi,
+                          tangent,
+                          JxW,
+                          tangent_symmetry(local),
+                          local.workspace.tangent_block);
       }
     if (lagged_damping || (viscous_cell(local) && local.request.second_matrix))
-      add_point_tangent(
-        geometry, grad_phi, damping, JxW, local.workspace.damping_block);
+      add_point_tangent(geometry,
+                        grad_phi,
+                        damping,
+                        JxW,
+                        Symmetry::symmetric,
+                        local.workspace.damping_block);
   }
 
 
@@ -378,6 +387,7 @@ namespace SoftRobot
                 local.second_matrix(i, j) = local.second_matrix(j, i);
             add_tangent_block(geometry,
                               local.workspace.damping_block,
+                              Symmetry::symmetric,
                               local.second_matrix);
           }
         return;
@@ -404,10 +414,14 @@ namespace SoftRobot
           local.matrix(i, j)        = local.matrix(j, i);
           local.second_matrix(i, j) = local.second_matrix(j, i);
         }
-    add_tangent_block(geometry, local.workspace.tangent_block, local.matrix);
+    add_tangent_block(geometry,
+                      local.workspace.tangent_block,
+                      tangent_symmetry(local),
+                      local.matrix);
     if (local.request.second_matrix)
       add_tangent_block(geometry,
                         local.workspace.damping_block,
+                        Symmetry::symmetric,
                         local.second_matrix);
     if (local.workspace.has_nonsymmetric_part)
       local.matrix.add(1., local.workspace.nonsymmetric_matrix);

@@ -88,13 +88,15 @@ namespace SoftRobot
   //
   // Node by node (see the header), with the gradients of the shape
   // functions copied into one array per direction so that the innermost
-  // loop runs over b with unit stride.
+  // loop runs over b with unit stride; for a symmetric $\mathcal A$ only
+  // over $b \le a$.
   template <int dim>
   void
   add_point_tangent(const CellGeometry<dim> &geometry,
                     const Tensor<1, dim>    *grad_phi,
                     const Tensor<4, dim>    &A,
                     const double             weight,
+                    const Symmetry           symmetry,
                     std::vector<double>     &block)
   {
     const unsigned int               n    = geometry.n_shape_functions;
@@ -110,6 +112,8 @@ namespace SoftRobot
       for (unsigned int c = 0; c < dim; ++c)
         for (unsigned int k = 0; k < dim; ++k)
           {
+            const unsigned int n_b =
+              (symmetry == Symmetry::symmetric) ? a + 1 : n;
             double W[dim];
             for (unsigned int L = 0; L < dim; ++L)
               {
@@ -124,12 +128,12 @@ namespace SoftRobot
                 const double *__restrict g0 = gradient[0];
                 const double *__restrict g1 = gradient[1];
                 const double *__restrict g2 = gradient[2];
-                for (unsigned int b = 0; b < n; ++b)
+                for (unsigned int b = 0; b < n_b; ++b)
                   row[b] += W[0] * g0[b] + W[1] * g1[b] + W[2] * g2[b];
               }
             else
               for (unsigned int L = 0; L < dim; ++L)
-                for (unsigned int b = 0; b < n; ++b)
+                for (unsigned int b = 0; b < n_b; ++b)
                   row[b] += W[L] * gradient[L][b];
           }
   }
@@ -146,10 +150,13 @@ namespace SoftRobot
 
 
 
+  // A symmetric block holds the pairs $b \le a$; the pair (a c, b k) with
+  // $b > a$ is the pair (b k, a c).
   template <int dim>
   void
   add_tangent_block(const CellGeometry<dim>   &geometry,
                     const std::vector<double> &block,
+                    const Symmetry             symmetry,
                     FullMatrix<double>        &matrix)
   {
     const unsigned int               n    = geometry.n_shape_functions;
@@ -160,8 +167,13 @@ namespace SoftRobot
           {
             const unsigned int i   = dofs[a * dim + c];
             const double      *row = &block[((a * dim + c) * dim + k) * n];
-            for (unsigned int b = 0; b < n; ++b)
+            const unsigned int n_b =
+              (symmetry == Symmetry::symmetric) ? a + 1 : n;
+            for (unsigned int b = 0; b < n_b; ++b)
               matrix(i, dofs[b * dim + k]) += row[b];
+            for (unsigned int b = n_b; b < n; ++b)
+              matrix(i, dofs[b * dim + k]) +=
+                block[((b * dim + k) * dim + c) * n + a];
           }
   }
 
@@ -179,11 +191,13 @@ namespace SoftRobot
                                        const Tensor<1, dim> *,              \
                                        const Tensor<4, dim> &,              \
                                        const double,                        \
+                                       const Symmetry,                      \
                                        std::vector<double> &);              \
   template void reset_tangent_block<dim>(const CellGeometry<dim> &,         \
                                          std::vector<double> &);            \
   template void add_tangent_block<dim>(const CellGeometry<dim> &,           \
                                        const std::vector<double> &,         \
+                                       const Symmetry,                      \
                                        FullMatrix<double> &);
   SOFT_ROBOT_FOR_EACH_DIMENSION(SOFT_ROBOT_INSTANTIATE)
 #undef SOFT_ROBOT_INSTANTIATE

@@ -19,6 +19,7 @@
 
 #include <Amesos.h>
 #include <Amesos_BaseSolver.h>
+#include <Amesos_Mumps.h>
 #include <Epetra_CrsMatrix.h>
 #include <Epetra_LinearProblem.h>
 #include <Epetra_MultiVector.h>
@@ -228,6 +229,17 @@ namespace SoftRobot
         Teuchos::ParameterList amesos_parameters;
         amesos_parameters.set("Refactorize", true);
         direct_factorization->SetParameters(amesos_parameters);
+      }
+    else
+      {
+        // MUMPS without its scaling of rows and columns (ICNTL(8) = 0
+        // instead of its automatic choice): the matrices here have one
+        // unit and rows of like size, and the scaling, recomputed in every
+        // numerical factorization, took a quarter of the factorization's
+        // time on the hexahedral bellows (doc/performance_discussion.md).
+        auto *mumps = dynamic_cast<Amesos_Mumps *>(direct_factorization.get());
+        AssertThrow(mumps != nullptr, ExcInternalError());
+        mumps->SetICNTL(8, 0);
       }
     AssertThrow(direct_factorization->SymbolicFactorization() == 0,
                 ExcMessage(package + ": the symbolic factorization failed."));
@@ -553,7 +565,7 @@ namespace SoftRobot
           if (level == ml.ML_coarsest_level)
             break;
         }
-      return Utilities::MPI::sum(all_levels, mpi_communicator) /
+      return dealii::Utilities::MPI::sum(all_levels, mpi_communicator) /
              static_cast<double>(matrix.n_nonzero_elements());
     }
   } // namespace LinearSolverInternals
