@@ -17,14 +17,17 @@
 // neo-Hookean bar or strip stiffen differently under the weight, the
 // reduced geometry depends on the silicone and the parameter set; each
 // reduced scene holds its own. Nothing is fitted to a measured frequency.
+// The 3D scenes' discretisation can be changed with `--set` options (for
+// both), so that the reduced models can follow the converged 3D model.
 //
 // <code>calibrate shear-modulus</code> finds the shear modulus with which
 // the experiment-1 scene (vertical oscillation) rings at the measured
 // frequency of its silicone. The frequency is computed as the study
 // computed the measured one: the peak of the Fourier transform of the
-// tip's vertical displacement over the whole record. The damping
-// coefficient is not fitted: zeta = 2 xi / omega with the measured xi and
-// omega (see parameters/silicones.prm).
+// tip's vertical displacement, over the record after the scene's
+// `Spectral analysis skip`. The damping coefficient is not fitted:
+// zeta = 2 xi / omega with the measured xi and omega (see
+// parameters/silicones.prm).
 
 #include <algorithm>
 #include <analysis/spectral_analysis.h>
@@ -34,6 +37,7 @@
 #include <core/simulator_access.h>
 #include <core/soft_robot_dynamics.h>
 #include <deal.II/base/mpi.h>
+#include <deal.II/fe/fe_values.h>
 #include <filesystem>
 #include <functional>
 #include <iomanip>
@@ -256,20 +260,65 @@ namespace
 
 
 
+  // The area of the tip block's loaded face (the faces of boundary 5 whose
+  // centre lies beyond x = x_min, i.e. below it, x pointing down) of the
+  // whole body, integrated with the scene's mapping: 841 mm^2 for the box
+  // of the tetrahedral meshes, 880.0 mm^2 for the cylinder of the
+  // hexahedral mesh (880.69 mm^2 exactly; the quadratic mapping of its
+  // rim takes off the rest). A model of a fraction of the body holds that
+  // fraction of the face.
+  double
+  loaded_face_area(const Parameters::AllParameters &parameters,
+                   const double                     x_min)
+  {
+    SoftRobotDynamics<3> model(parameters, MPI_COMM_WORLD);
+    SimulatorAccess<3>   access(model);
+    access.make_grid();
+    access.setup_system();
+    const DoFHandler<3> &dof_handler = access.get_dof_handler();
+    const Quadrature<2>  quadrature =
+      dof_handler.get_fe()
+        .reference_cell()
+        .face_reference_cell(0)
+        .get_gauss_type_quadrature<2>(dof_handler.get_fe().degree + 1);
+    FEFaceValues<3> face_values(access.get_mapping(),
+                                dof_handler.get_fe(),
+                                quadrature,
+                                update_JxW_values);
+    double          area = 0.;
+    for (const auto &cell : dof_handler.active_cell_iterators())
+      if (cell->is_locally_owned())
+        for (const auto &face : cell->face_iterators())
+          if (face->at_boundary() && face->boundary_id() == 5 &&
+              face->center()[0] > x_min)
+            {
+              face_values.reinit(cell, face);
+              for (unsigned int q = 0; q < quadrature.size(); ++q)
+                area += face_values.JxW(q);
+            }
+    return Utilities::MPI::sum(area, MPI_COMM_WORLD) /
+           parameters.model_fraction;
+  }
+
+
+
   // @sect4{The reduced models from static 3D solves}
   ReducedGeometry
-  calibrate_reduced_models(const std::string &quarter_scene,
-                           const std::string &half_scene,
-                           const std::string &column_scene,
-                           const std::string &strip_scene)
+  calibrate_reduced_models(const std::string              &quarter_scene,
+                           const std::string              &half_scene,
+                           const std::string              &column_scene,
+                           const std::string              &strip_scene,
+                           const std::vector<std::string> &overrides)
   {
-    const double block_face = 29. * 29.; // the block's bottom face, mm^2
-    const double x_bottom   = 99.2;      // faces below this are not loaded
+    const double x_bottom = 99.2; // faces below this are not loaded
 
     // The 3D targets: axial stiffness from the quarter model, lateral
-    // (y) stiffness from the half model.
-    const Parameters::AllParameters quarter = read(quarter_scene);
-    const Parameters::AllParameters half    = read(half_scene);
+    // (y) stiffness from the half model; the overrides change both.
+    const Parameters::AllParameters quarter = read(quarter_scene, overrides);
+    const Parameters::AllParameters half    = read(half_scene, overrides);
+    const double block_face = loaded_face_area(quarter, x_bottom);
+    std::cout << "Loaded face of the tip block: " << number(block_face, 6)
+              << " mm^2" << std::endl;
     const auto face_traction = [&](const unsigned int component) {
       return [=](const double force) {
         return traction_expression(3, component, force / block_face, x_bottom);
@@ -557,11 +606,14 @@ namespace
       << "Usage:\n"
          "  calibrate reduced-models <quarter 3D scene> <half 3D scene> "
          "<1D scene> <2D scene> [--check]\n"
+         "                           [--set 'Subsection/Entry=value']...\n"
          "      section of the 1D column, width and thickness of the 2D "
          "strip from static\n"
          "      solves of the 3D actuator; --check: exit with 1 unless "
          "the 1D and 2D\n"
-         "      scene files hold these numbers (to 0.5 %)\n"
+         "      scene files hold these numbers (to 0.5 %); each --set "
+         "changes one entry of\n"
+         "      both 3D scenes\n"
          "  calibrate shear-modulus <experiment-1 scene> "
          "[--set 'Subsection/Entry=value']...\n"
          "      the shear modulus with which the scene rings at its "
@@ -586,32 +638,41 @@ main(int argc, char *argv[])
   const std::vector<std::string>   arguments(argv + 1, argv + argc);
   try
     {
+      // The options after the positional arguments: --set 'S/E=v' (any
+      // number) and, for reduced-models, --check.
+      const auto options = [&](const unsigned int        first,
+                               std::vector<std::string> &overrides,
+                               bool                     *check) {
+        for (unsigned int i = first; i < arguments.size(); ++i)
+          if (arguments[i] == "--set" && i + 1 < arguments.size())
+            overrides.push_back(arguments[++i]);
+          else if (arguments[i] == "--check" && check != nullptr)
+            *check = true;
+          else
+            return false;
+        return true;
+      };
+      std::vector<std::string> overrides;
+      bool                     check = false;
       if (arguments.size() >= 5 && arguments[0] == "reduced-models")
         {
-          const bool check = arguments.size() == 6 && arguments[5] == "--check";
-          if (arguments.size() == 6 && !check)
+          if (!options(5, overrides, &check))
             {
               print_usage();
               return 1;
             }
           const ReducedGeometry geometry = calibrate_reduced_models(
-            arguments[1], arguments[2], arguments[3], arguments[4]);
+            arguments[1], arguments[2], arguments[3], arguments[4], overrides);
           if (check && !scenes_match(geometry, arguments[3], arguments[4]))
             return 1;
           return 0;
         }
-      if (arguments.size() >= 2 && arguments.size() % 2 == 0 &&
-          arguments[0] == "shear-modulus")
+      if (arguments.size() >= 2 && arguments[0] == "shear-modulus")
         {
-          std::vector<std::string> overrides;
-          for (unsigned int i = 2; i < arguments.size(); i += 2)
+          if (!options(2, overrides, nullptr))
             {
-              if (arguments[i] != "--set")
-                {
-                  print_usage();
-                  return 1;
-                }
-              overrides.push_back(arguments[i + 1]);
+              print_usage();
+              return 1;
             }
           calibrate_shear_modulus(arguments[1], overrides);
           return 0;

@@ -151,9 +151,8 @@ namespace SoftRobot
     Symmetry
     tangent_symmetry(const CellContribution<dim> &local) const
     {
-      return (symmetric_tangent || !viscous_cell(local)) ?
-               Symmetry::symmetric :
-               Symmetry::general;
+      return (symmetric_tangent || !viscous_cell(local)) ? Symmetry::symmetric
+                                                         : Symmetry::general;
     }
 
     // The cell's displacement gradients at its quadrature points, from
