@@ -565,6 +565,8 @@ namespace SoftRobot
           if (level == ml.ML_coarsest_level)
             break;
         }
+      // (Qualified: Amesos_Mumps.h opens namespace Teuchos, which has a
+      // Utilities of its own.)
       return dealii::Utilities::MPI::sum(all_levels, mpi_communicator) /
              static_cast<double>(matrix.n_nonzero_elements());
     }
