@@ -264,9 +264,9 @@ namespace
   // centre lies beyond x = x_min, i.e. below it, x pointing down) of the
   // whole body, integrated with the scene's mapping: 841 mm^2 for the box
   // of the tetrahedral meshes, 880.0 mm^2 for the cylinder of the
-  // hexahedral mesh (880.69 mm^2 exactly; the quadratic mapping of its
-  // rim takes off the rest). A model of a fraction of the body holds that
-  // fraction of the face.
+  // hexahedral mesh (880.69 mm^2 exactly; its rim interpolated
+  // quadratically in eight arcs encloses 880.005 mm^2). A model of a
+  // fraction of the body holds that fraction of the face.
   double
   loaded_face_area(const Parameters::AllParameters &parameters,
                    const double                     x_min)

@@ -151,8 +151,9 @@ namespace SoftRobot
     Symmetry
     tangent_symmetry(const CellContribution<dim> &local) const
     {
-      return (symmetric_tangent || !viscous_cell(local)) ? Symmetry::symmetric
-                                                         : Symmetry::general;
+      return (!viscous_cell(local) || viscous->has_symmetric_tangent())
+               ? Symmetry::symmetric
+               : Symmetry::general;
     }
 
     // The cell's displacement gradients at its quadrature points, from
@@ -194,7 +195,6 @@ namespace SoftRobot
 
     const CellGeometry<dim>                            &geometry;
     const DilatationProjection<dim>                     projection;
-    const bool                                          symmetric_tangent;
     bool                                                damped = false;
     std::map<types::material_id, NeoHookeanEnergy<dim>> laws;
     // Per cell: its law and damping coefficient $\zeta$.

@@ -139,6 +139,14 @@ namespace SoftRobot
                        const std::vector<double> &cell_zeta,
                        const bool                 symmetric_tangent);
 
+    // Whether the tangent it adds is symmetric (its non-symmetric parts
+    // left out).
+    bool
+    has_symmetric_tangent() const
+    {
+      return symmetric_tangent;
+    }
+
     // What the point contribution needs of the kinematics at a quadrature
     // point: the deformation gradient, the velocity gradient, and with a
     // matrix the strain variations $\delta\mathbf E_i$ and the material

@@ -24,7 +24,6 @@ namespace SoftRobot
     const bool                       symmetric_tangent)
     : geometry(geometry)
     , projection(geometry, dilatation_modes(parameters, geometry))
-    , symmetric_tangent(symmetric_tangent)
   {
     for (const auto &[id, material] : parameters.by_id)
       {

@@ -233,10 +233,10 @@ namespace SoftRobot
     else
       {
         // MUMPS without its scaling of rows and columns (ICNTL(8) = 0
-        // instead of its automatic choice): the matrices here have one
-        // unit and rows of like size, and the scaling, recomputed in every
-        // numerical factorization, took a quarter of the factorization's
-        // time on the hexahedral bellows (doc/performance_discussion.md).
+        // instead of its automatic choice; its threshold pivoting stays):
+        // on the hexahedral bellows the factorizations took a quarter less
+        // time and gave the same iterates to round-off
+        // (doc/performance_discussion.md, item 31).
         auto *mumps = dynamic_cast<Amesos_Mumps *>(direct_factorization.get());
         AssertThrow(mumps != nullptr, ExcInternalError());
         mumps->SetICNTL(8, 0);
