@@ -2,9 +2,9 @@
 
 // @sect3{Calibration commands}
 //
-// Two commands that produce the numbers of the bellows scenes which are not
-// measured directly, so that every such number in a scene file can be
-// reproduced:
+// Three commands that produce the numbers of the bellows models which are
+// not measured directly, so that every such number in a scene file or in
+// the validation's discussion can be reproduced:
 //
 // <code>calibrate reduced-models</code> computes the geometry of the
 // reduced models from static solves of the 3D actuator. The 1D column is
@@ -28,6 +28,15 @@
 // `Spectral analysis skip`. The damping coefficient is not fitted:
 // zeta = 2 xi / omega with the measured xi and omega (see
 // parameters/silicones.prm).
+//
+// <code>calibrate dead-volume</code> is the alternative for a scene whose
+// cavity holds a sealed gas (`Pneumatics/Pressure model = gas`): with the
+// shear modulus of the scene unchanged, it finds the volume of gas outside
+// the actuator (tubing, valves, a reservoir) with which the scene rings at
+// the measured frequency. A smaller volume makes the gas a stiffer spring
+// on the end cap. It is the second calibrated model of the validation's
+// model-form study (doc/validation_discussion.md): a modulus from the
+// material's data and the air in the inlet instead of a fitted modulus.
 
 #include <algorithm>
 #include <analysis/spectral_analysis.h>
@@ -523,18 +532,12 @@ namespace
 
   // @sect4{The shear modulus from the experiment-1 frequency}
   //
-  // The vertical frequency of the scene with shear modulus mu: the scene is
-  // run (without VTU output, into a scratch directory) and its tip
-  // trajectory analysed.
+  // The vertical frequency of the scene: the scene is run (without VTU
+  // output, into a scratch directory) and its tip trajectory analysed.
   double
   vertical_frequency(Parameters::AllParameters parameters,
-                     const double              shear_modulus,
                      const std::string        &directory)
   {
-    Parameters::Material &silicone = parameters.by_id.at(1);
-    const double ratio     = silicone.bulk_modulus / silicone.shear_modulus;
-    silicone.shear_modulus = shear_modulus;
-    silicone.bulk_modulus  = ratio * shear_modulus;
     parameters.output_directory  = directory;
     parameters.trajectory_file   = "tip_trajectory.csv";
     parameters.write_vtu         = false;
@@ -558,6 +561,28 @@ namespace
     return vertical.dominant_peak.frequency;
   }
 
+  // The scene with the shear modulus mu and the scene's ratio of bulk to
+  // shear modulus.
+  Parameters::AllParameters
+  with_shear_modulus(Parameters::AllParameters parameters,
+                     const double              shear_modulus)
+  {
+    Parameters::Material &silicone = parameters.by_id.at(1);
+    const double ratio     = silicone.bulk_modulus / silicone.shear_modulus;
+    silicone.shear_modulus = shear_modulus;
+    silicone.bulk_modulus  = ratio * shear_modulus;
+    return parameters;
+  }
+
+  // A scratch directory for the trial runs of one calibration.
+  std::string
+  scratch_directory()
+  {
+    return (std::filesystem::temp_directory_path() /
+            ("soft-robot-calibrate-" + std::to_string(::getpid())))
+      .string();
+  }
+
   double
   calibrate_shear_modulus(const std::string              &scene,
                           const std::vector<std::string> &overrides)
@@ -569,18 +594,16 @@ namespace
                                    "library."));
     const Parameters::Silicone &silicone =
       parameters.silicones.at(material.silicone);
-    const double      target = silicone.frequency;
-    const std::string directory =
-      (std::filesystem::temp_directory_path() /
-       ("soft-robot-calibrate-" + std::to_string(::getpid())))
-        .string();
+    const double      target    = silicone.frequency;
+    const std::string directory = scratch_directory();
 
     // Started from the baseline (C1) with the exponent 1/2 of a linear
     // spring, to 0.1 % (the measured frequencies are given to three digits).
     const double mu = solve_power_law(
       [&](const double shear_modulus) {
         const double frequency =
-          vertical_frequency(parameters, shear_modulus, directory);
+          vertical_frequency(with_shear_modulus(parameters, shear_modulus),
+                             directory);
         std::cout << "  mu = " << number(shear_modulus, 6)
                   << " kPa: f = " << number(frequency, 6) << " Hz" << std::endl;
         return frequency;
@@ -597,6 +620,65 @@ namespace
               << number(mu, 4) << "   (C1 = " << silicone.c1 << ", ratio "
               << number(mu / silicone.c1, 4) << ")" << std::endl;
     return mu;
+  }
+
+  // @sect4{The dead volume of a sealed gas from the experiment-1 frequency}
+  //
+  // The gas's stiffness on the end cap is about gamma P A^2 / V for a gas
+  // volume V, and V is almost all dead volume V_d (the bellows' cavity
+  // holds a few ten thousand mm^3): the frequency grows with 1/V_d like a
+  // power between 0 (an open inlet) and 1/2 (the gas alone). The same
+  // secant iteration as for the modulus, on 1/V_d, started from the
+  // scene's dead volume with the exponent 1/4 (the gas carrying half of
+  // the stiffness).
+  double
+  calibrate_dead_volume(const std::string              &scene,
+                        const std::vector<std::string> &overrides)
+  {
+    const Parameters::AllParameters parameters = read(scene, overrides);
+    const Parameters::Material     &material   = parameters.by_id.at(1);
+    AssertThrow(!material.silicone.empty(),
+                ExcMessage(scene + ": Material 1 must name a Silicone of the "
+                                   "library."));
+    AssertThrow(parameters.pressure_model ==
+                  Parameters::Pneumatics::PressureModel::gas,
+                ExcMessage(scene +
+                           ": Pneumatics/Pressure model is 'prescribed'; "
+                           "calibrate dead-volume needs 'gas' (a sealed "
+                           "cavity, with Pressure boundary ids)."));
+    AssertThrow(parameters.dead_volume > 0.,
+                ExcMessage(scene + ": Pneumatics/Dead volume = " +
+                           number(parameters.dead_volume) +
+                           " mm^3; the calibration starts from it and needs "
+                           "a value > 0."));
+    const Parameters::Silicone &silicone =
+      parameters.silicones.at(material.silicone);
+    const double      target    = silicone.frequency;
+    const std::string directory = scratch_directory();
+
+    const double inverse_volume = solve_power_law(
+      [&](const double x) {
+        Parameters::AllParameters trial = parameters;
+        trial.dead_volume               = 1. / x;
+        const double frequency          = vertical_frequency(trial, directory);
+        std::cout << "  dead volume = " << number(1. / x, 6)
+                  << " mm^3: f = " << number(frequency, 6) << " Hz"
+                  << std::endl;
+        return frequency;
+      },
+      target,
+      1. / parameters.dead_volume,
+      0.25,
+      0.01,
+      0.5,
+      1e-3);
+    std::filesystem::remove_all(directory);
+    std::cout << silicone.name << ": target " << target
+              << " Hz (experiment 1), shear modulus " << material.shear_modulus
+              << " kPa, gas law exponent " << parameters.gas_exponent
+              << "\n  set Dead volume = " << number(1. / inverse_volume, 4)
+              << "   (mm^3)" << std::endl;
+    return 1. / inverse_volume;
   }
 
   void
@@ -620,7 +702,14 @@ namespace
          "silicone's measured\n"
          "      experiment-1 frequency; each --set changes one entry of the "
          "scene, as for\n"
-         "      soft-robot (another mesh, element or time step)\n";
+         "      soft-robot (another mesh, element or time step)\n"
+         "  calibrate dead-volume <experiment-1 scene> "
+         "[--set 'Subsection/Entry=value']...\n"
+         "      for a scene whose cavity holds a sealed gas: the dead volume "
+         "with which it\n"
+         "      rings at the measured experiment-1 frequency, the shear "
+         "modulus unchanged;\n"
+         "      started from the scene's Dead volume\n";
   }
 } // namespace
 
@@ -675,6 +764,16 @@ main(int argc, char *argv[])
               return 1;
             }
           calibrate_shear_modulus(arguments[1], overrides);
+          return 0;
+        }
+      if (arguments.size() >= 2 && arguments[0] == "dead-volume")
+        {
+          if (!options(2, overrides, nullptr))
+            {
+              print_usage();
+              return 1;
+            }
+          calibrate_dead_volume(arguments[1], overrides);
           return 0;
         }
       print_usage();
