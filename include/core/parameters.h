@@ -256,10 +256,19 @@ namespace SoftRobot
         expressions,
         static_equilibrium
       };
-      InitialState initial_state;
-      std::string  displacement_expression;
-      std::string  velocity_expression;
-      unsigned int load_steps;
+      // Where the Velocity expression is evaluated: at the reference
+      // position of each node, or at its position in the initial state
+      // (reference plus initial displacement).
+      enum class VelocityCoordinates
+      {
+        reference,
+        initial_state
+      };
+      InitialState        initial_state;
+      std::string         displacement_expression;
+      std::string         velocity_expression;
+      VelocityCoordinates velocity_coordinates;
+      unsigned int        load_steps;
 
       static void
       declare_parameters(ParameterHandler &prm);

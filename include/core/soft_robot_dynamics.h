@@ -242,6 +242,11 @@ namespace SoftRobot
     // alone, unless the damping force needs the damping matrix.
     AssemblyResult
     assemble_state(const bool with_matrices = true);
+    // The initial velocity expression interpolated at the nodes' positions
+    // in the state `current.u` (Initial conditions/Velocity coordinates =
+    // initial state).
+    void
+    interpolate_velocity_at_current_positions();
     // The damping forces that are not cell integrals, at velocity v, added
     // to `force`: the lagged damping matrix's and the mass-proportional
     // damping's; and their matrices times `factor`, added to `matrix`.

@@ -760,6 +760,17 @@ namespace SoftRobot
                         "",
                         Patterns::Anything(),
                         "Initial velocity, mm/s, likewise.");
+      prm.declare_entry(
+        "Velocity coordinates",
+        "reference",
+        Patterns::Selection("reference|initial state"),
+        "Where x, y, z of the Velocity expression are taken: 'reference', "
+        "the position of each node in the mesh; 'initial state', its "
+        "position in the initial state (the mesh plus the initial "
+        "displacement, after the static equilibrium if there is one). A "
+        "rigid rotation of a deformed body, which neither strains it nor "
+        "loads its damping, is written with the latter, e.g. '-w*(z - "
+        "z0); 0; w*(x - x0)'.");
       prm.declare_entry("Load steps",
                         "4",
                         Patterns::Integer(1, 1000),
@@ -777,7 +788,11 @@ namespace SoftRobot
                                   : InitialState::expressions;
       displacement_expression = prm.get("Displacement");
       velocity_expression     = prm.get("Velocity");
-      load_steps              = prm.get_integer("Load steps");
+      velocity_coordinates =
+        (prm.get("Velocity coordinates") == "initial state")
+          ? VelocityCoordinates::initial_state
+          : VelocityCoordinates::reference;
+      load_steps = prm.get_integer("Load steps");
       prm.leave_subsection();
     }
 

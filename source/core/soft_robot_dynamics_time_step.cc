@@ -470,6 +470,9 @@ namespace SoftRobot
     if (parameters.initial_state ==
         Parameters::InitialConditions::InitialState::static_equilibrium)
       solve_static_equilibrium(0.);
+    if (parameters.velocity_coordinates ==
+        Parameters::InitialConditions::VelocityCoordinates::initial_state)
+      interpolate_velocity_at_current_positions();
     // A gas is sealed in the cavity of the initial state.
     if (pneumatics)
       pneumatics->seal(current.u);
@@ -491,6 +494,57 @@ namespace SoftRobot
     initial_total_energy =
       energy.kinetic + energy.strain + energy.gravity_potential;
     counters.steps = 0;
+  }
+
+
+
+  // @sect4{SoftRobotDynamics::interpolate_velocity_at_current_positions}
+  //
+  // The velocity expression evaluated where the nodes are in the initial
+  // state. A field that is rigid in the reference coordinates, $\mathbf v
+  // = \mathbf W\mathbf X$, is not rigid for a body that the static
+  // equilibrium has bent: its Green-Lagrange strain rate is
+  // $\mathrm{sym}(\mathbf F^T\mathbf W) \ne 0$, which the Kelvin-Voigt
+  // damping resists with the bulk viscosity too. Evaluated at $\mathbf x =
+  // \mathbf X + \mathbf u_0$, $\mathbf v = \mathbf W\mathbf x$ is rigid
+  // for the initial state up to the interpolation of $\mathbf x$ (exact on
+  // the nodes). The points are the finite element's support points mapped
+  // by the scene's mapping, one per local degree of freedom (the elements
+  // are Lagrange elements), so each component of each node gets the value
+  // at its node's own current position.
+  template <int dim>
+  void
+  SoftRobotDynamics<dim>::interpolate_velocity_at_current_positions()
+  {
+    TrilinosWrappers::MPI::Vector ghosted_u(locally_owned_dofs,
+                                            locally_relevant_dofs,
+                                            mpi_communicator);
+    ghosted_u = current.u;
+    const Quadrature<dim> support_points(fe->get_unit_support_points());
+    FEValues<dim>         fe_values(*mapping,
+                            *fe,
+                            support_points,
+                            update_quadrature_points | update_values);
+    const FEValuesExtractors::Vector     displacement(0);
+    std::vector<Tensor<1, dim>>          u_values(support_points.size());
+    std::vector<types::global_dof_index> dof_indices(fe->n_dofs_per_cell());
+    for (const auto &cell : dof_handler.active_cell_iterators())
+      if (cell->is_locally_owned())
+        {
+          fe_values.reinit(cell);
+          fe_values[displacement].get_function_values(ghosted_u, u_values);
+          cell->get_dof_indices(dof_indices);
+          for (unsigned int i = 0; i < dof_indices.size(); ++i)
+            if (locally_owned_dofs.is_element(dof_indices[i]))
+              {
+                const Point<dim> x =
+                  fe_values.quadrature_point(i) + u_values[i];
+                current.v(dof_indices[i]) = initial_velocity.value(
+                  x, fe->system_to_component_index(i).first);
+              }
+        }
+    current.v.compress(VectorOperation::insert);
+    constraints.set_zero(current.v);
   }
 
 
