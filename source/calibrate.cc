@@ -574,6 +574,19 @@ namespace
     return parameters;
   }
 
+  // The silicone of an experiment-1 scene's Material 1, whose measured
+  // frequency the calibrations aim at.
+  const Parameters::Silicone &
+  silicone_of(const Parameters::AllParameters &parameters,
+              const std::string               &scene)
+  {
+    const Parameters::Material &material = parameters.by_id.at(1);
+    AssertThrow(!material.silicone.empty(),
+                ExcMessage(scene + ": Material 1 must name a Silicone of the "
+                                   "library."));
+    return parameters.silicones.at(material.silicone);
+  }
+
   // A scratch directory for the trial runs of one calibration.
   std::string
   scratch_directory()
@@ -588,14 +601,9 @@ namespace
                           const std::vector<std::string> &overrides)
   {
     const Parameters::AllParameters parameters = read(scene, overrides);
-    const Parameters::Material     &material   = parameters.by_id.at(1);
-    AssertThrow(!material.silicone.empty(),
-                ExcMessage(scene + ": Material 1 must name a Silicone of the "
-                                   "library."));
-    const Parameters::Silicone &silicone =
-      parameters.silicones.at(material.silicone);
-    const double      target    = silicone.frequency;
-    const std::string directory = scratch_directory();
+    const Parameters::Silicone     &silicone   = silicone_of(parameters, scene);
+    const double                    target     = silicone.frequency;
+    const std::string               directory  = scratch_directory();
 
     // Started from the baseline (C1) with the exponent 1/2 of a linear
     // spring, to 0.1 % (the measured frequencies are given to three digits).
@@ -624,22 +632,20 @@ namespace
 
   // @sect4{The dead volume of a sealed gas from the experiment-1 frequency}
   //
-  // The gas's stiffness on the end cap is about gamma P A^2 / V for a gas
-  // volume V, and V is almost all dead volume V_d (the bellows' cavity
-  // holds a few ten thousand mm^3): the frequency grows with 1/V_d like a
-  // power between 0 (an open inlet) and 1/2 (the gas alone). The same
+  // The gas's stiffness on the end cap is about gamma P A^2 / V for the
+  // gas volume V = V_c + V_d, the cavity's (about 32,000 mm^3 for the
+  // whole hanging bellows) and the dead volume: the frequency grows with
+  // 1/V_d, at most like the power 1/2 (the gas alone), less as V_c
+  // matters and the silicone carries part of the stiffness. The same
   // secant iteration as for the modulus, on 1/V_d, started from the
-  // scene's dead volume with the exponent 1/4 (the gas carrying half of
-  // the stiffness).
+  // scene's dead volume with the exponent 1/4; each secant's exponent is
+  // kept in [0.01, 0.5].
   double
   calibrate_dead_volume(const std::string              &scene,
                         const std::vector<std::string> &overrides)
   {
     const Parameters::AllParameters parameters = read(scene, overrides);
-    const Parameters::Material     &material   = parameters.by_id.at(1);
-    AssertThrow(!material.silicone.empty(),
-                ExcMessage(scene + ": Material 1 must name a Silicone of the "
-                                   "library."));
+    const Parameters::Silicone     &silicone   = silicone_of(parameters, scene);
     AssertThrow(parameters.pressure_model ==
                   Parameters::Pneumatics::PressureModel::gas,
                 ExcMessage(scene +
@@ -651,8 +657,6 @@ namespace
                            number(parameters.dead_volume) +
                            " mm^3; the calibration starts from it and needs "
                            "a value > 0."));
-    const Parameters::Silicone &silicone =
-      parameters.silicones.at(material.silicone);
     const double      target    = silicone.frequency;
     const std::string directory = scratch_directory();
 
@@ -674,7 +678,8 @@ namespace
       1e-3);
     std::filesystem::remove_all(directory);
     std::cout << silicone.name << ": target " << target
-              << " Hz (experiment 1), shear modulus " << material.shear_modulus
+              << " Hz (experiment 1), shear modulus "
+              << parameters.by_id.at(1).shear_modulus
               << " kPa, gas law exponent " << parameters.gas_exponent
               << "\n  set Dead volume = " << number(1. / inverse_volume, 4)
               << "   (mm^3)" << std::endl;

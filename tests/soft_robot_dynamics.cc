@@ -11,8 +11,10 @@
 
 #include <cmath>
 #include <core/soft_robot_dynamics.h>
+#include <deal.II/base/function_parser.h>
 #include <deal.II/base/utilities.h>
 #include <deal.II/dofs/dof_tools.h>
+#include <functional>
 #include <gtest/gtest.h>
 #include <iomanip>
 
@@ -529,6 +531,37 @@ TYPED_TEST(SolverTest, HHTNeverGainsEnergy)
 
 
 
+// The largest difference between a nodal vector of the body and a field
+// given per component at the nodes' positions in the mesh.
+template <int dim>
+double
+largest_nodal_difference(
+  const SimulatorAccess<dim>                                    &body,
+  const TrilinosWrappers::MPI::Vector                           &values,
+  const std::function<double(const Point<dim> &, unsigned int)> &exact)
+{
+  std::map<types::global_dof_index, Point<dim>> support_points;
+  DoFTools::map_dofs_to_support_points(body.get_mapping(),
+                                       body.get_dof_handler(),
+                                       support_points);
+  double largest = 0.;
+  for (const auto &cell : body.get_dof_handler().active_cell_iterators())
+    {
+      std::vector<types::global_dof_index> dofs(
+        cell->get_fe().n_dofs_per_cell());
+      cell->get_dof_indices(dofs);
+      for (unsigned int i = 0; i < dofs.size(); ++i)
+        {
+          const unsigned int c =
+            cell->get_fe().system_to_component_index(i).first;
+          largest = std::max(largest,
+                             std::abs(values[dofs[i]] -
+                                      exact(support_points[dofs[i]], c)));
+        }
+    }
+  return largest;
+}
+
 // @sect4{Patch test: a uniform stretch on a distorted mesh}
 //
 // The unit square or cube, its interior vertices moved at random, symmetry
@@ -590,26 +623,10 @@ check_patch_test(const bool         simplices,
   body.setup_system();
   body.solve_static_equilibrium(0.);
 
-  std::map<types::global_dof_index, Point<dim>> support_points;
-  DoFTools::map_dofs_to_support_points(body.get_mapping(),
-                                       body.get_dof_handler(),
-                                       support_points);
-  double largest_error = 0.;
-  for (const auto &cell : body.get_dof_handler().active_cell_iterators())
-    {
-      std::vector<types::global_dof_index> dofs(
-        cell->get_fe().n_dofs_per_cell());
-      cell->get_dof_indices(dofs);
-      for (unsigned int i = 0; i < dofs.size(); ++i)
-        {
-          const unsigned int c =
-            cell->get_fe().system_to_component_index(i).first;
-          const double exact = (stretches[c] - 1.) * support_points[dofs[i]][c];
-          largest_error =
-            std::max(largest_error,
-                     std::abs(body.displacement()[dofs[i]] - exact));
-        }
-    }
+  const double largest_error = largest_nodal_difference<dim>(
+    body, body.displacement(), [&](const Point<dim> &X, const unsigned int c) {
+      return (stretches[c] - 1.) * X[c];
+    });
   std::cout << dim << "D patch test ("
             << (simplices ? "simplices" : "hypercubes") << ", p = " << degree
             << ", " << formulation << "): largest nodal error " << largest_error
@@ -637,17 +654,13 @@ TYPED_TEST(SolverTest, PatchTestHypercubes)
 // quadratic mesh.
 TYPED_TEST(SolverTest, InitialVelocityAtInitialStatePositions)
 {
-  constexpr int                  dim                  = TypeParam::value;
-  const std::vector<std::string> displacement         = {"0.1*x",
-                                                         "0.05*x - 0.02*y",
-                                                         "0.03*z + 0.01*x"};
-  const auto                     initial_displacement = [](const Point<dim>  &X,
-                                       const unsigned int c) {
-    const double y = dim > 1 ? X[1 % dim] : 0., z = dim > 2 ? X[2 % dim] : 0.;
-    return c == 0   ? 0.1 * X[0]
-                               : c == 1 ? 0.05 * X[0] - 0.02 * y
-                                        : 0.03 * z + 0.01 * X[0];
-  };
+  constexpr int     dim = TypeParam::value;
+  const std::string displacement =
+    dim_list(dim, {"0.1*x", "0.05*x - 0.02*y", "0.03*z + 0.01*x"}, "; ");
+  FunctionParser<dim> initial_displacement(dim);
+  initial_displacement.initialize(FunctionParser<dim>::default_variable_names(),
+                                  displacement,
+                                  {});
   for (const bool at_initial_state : {false, true})
     {
       std::ostringstream sections;
@@ -658,7 +671,7 @@ TYPED_TEST(SolverTest, InitialVelocityAtInitialStatePositions)
         << "subsection Finite element\n  set Polynomial degree = 2\nend\n"
         << material(1, 10., 50., 1e-6, 1.)
         << "subsection Initial conditions\n  set Displacement = "
-        << dim_list(dim, displacement, "; ")
+        << displacement
         << "\n  set Velocity = " << dim_list(dim, {"x", "y", "z"}, "; ")
         << "\n  set Velocity coordinates = "
         << (at_initial_state ? "initial state" : "reference") << "\nend\n";
@@ -668,28 +681,11 @@ TYPED_TEST(SolverTest, InitialVelocityAtInitialStatePositions)
       body.setup_system();
       body.initialize_state();
 
-      std::map<types::global_dof_index, Point<dim>> support_points;
-      DoFTools::map_dofs_to_support_points(body.get_mapping(),
-                                           body.get_dof_handler(),
-                                           support_points);
-      double largest_error = 0.;
-      for (const auto &cell : body.get_dof_handler().active_cell_iterators())
-        {
-          std::vector<types::global_dof_index> dofs(
-            cell->get_fe().n_dofs_per_cell());
-          cell->get_dof_indices(dofs);
-          for (unsigned int i = 0; i < dofs.size(); ++i)
-            {
-              const unsigned int c =
-                cell->get_fe().system_to_component_index(i).first;
-              const Point<dim> &X = support_points[dofs[i]];
-              const double      expected =
-                X[c] + (at_initial_state ? initial_displacement(X, c) : 0.);
-              largest_error =
-                std::max(largest_error,
-                         std::abs(body.velocity()[dofs[i]] - expected));
-            }
-        }
+      const double largest_error = largest_nodal_difference<dim>(
+        body, body.velocity(), [&](const Point<dim> &X, const unsigned int c) {
+          return X[c] +
+                 (at_initial_state ? initial_displacement.value(X, c) : 0.);
+        });
       std::cout << dim << "D initial velocity at the "
                 << (at_initial_state ? "initial state's" : "reference")
                 << " positions: largest nodal difference " << largest_error

@@ -460,18 +460,24 @@ namespace SoftRobot
                              dof_handler,
                              initial_displacement,
                              current.u);
-    VectorTools::interpolate(*mapping,
-                             dof_handler,
-                             initial_velocity,
-                             current.v);
     constraints.set_zero(current.u);
-    constraints.set_zero(current.v);
+    const bool velocity_at_initial_state =
+      parameters.velocity_coordinates ==
+      Parameters::InitialConditions::VelocityCoordinates::initial_state;
+    current.v = 0.;
+    if (!velocity_at_initial_state)
+      {
+        VectorTools::interpolate(*mapping,
+                                 dof_handler,
+                                 initial_velocity,
+                                 current.v);
+        constraints.set_zero(current.v);
+      }
 
     if (parameters.initial_state ==
         Parameters::InitialConditions::InitialState::static_equilibrium)
       solve_static_equilibrium(0.);
-    if (parameters.velocity_coordinates ==
-        Parameters::InitialConditions::VelocityCoordinates::initial_state)
+    if (velocity_at_initial_state)
       interpolate_velocity_at_current_positions();
     // A gas is sealed in the cavity of the initial state.
     if (pneumatics)
@@ -505,8 +511,7 @@ namespace SoftRobot
   // = \mathbf W\mathbf X$, is not rigid for a body that the static
   // equilibrium has bent: its Green-Lagrange strain rate is
   // $\mathrm{sym}(\mathbf F^T\mathbf W) \ne 0$, which the Kelvin-Voigt
-  // damping resists with the bulk viscosity too. Evaluated at $\mathbf x =
-  // \mathbf X + \mathbf u_0$, $\mathbf v = \mathbf W\mathbf x$ is rigid
+  // damping resists. Evaluated at $\mathbf x = \mathbf X + \mathbf u_0$, $\mathbf v = \mathbf W\mathbf x$ is rigid
   // for the initial state up to the interpolation of $\mathbf x$ (exact on
   // the nodes). The points are the finite element's support points mapped
   // by the scene's mapping, one per local degree of freedom (the elements
