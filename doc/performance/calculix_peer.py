@@ -10,9 +10,16 @@ t = 0 from a "hold" on the tip block and ringing for 5.25 s. With
 --degree 1 (the default) the elements are linear tetrahedra (ccx's C3D4,
 the benchmark's headline), with --degree 2 quadratic ones on the same
 mesh (C3D10, the mid-edge nodes at the edges' midpoints, as deal.II's
-quadratic elements on this straight-sided mesh). This script builds the
-case for CalculiX (ccx), runs it, and reports ccx's wall time and the
-frequency of the tip.
+quadratic elements on this straight-sided mesh). With --hex it runs the
+same experiment on the hexahedral mesh of the bellows (Geometry/Mesh
+source = bellows, the quarter model's first mesh hex-1-3-1-2 unless
+--hex-overrides says otherwise) in ccx's 20-node hexahedra, C3D20 (full
+integration). The reduced-integration C3D20R, the usual element for
+nearly incompressible rubber, is not offered: in ccx 2.20 its static step
+converges on this mesh, but its first dynamic increment diverges, at
+dt = 0.01 s and at 0.002 s alike.
+This script builds the case for CalculiX (ccx), runs it, and reports
+ccx's wall time and the frequency of the tip.
 
 Usage (from anywhere; paths default to the repository of this script):
 
@@ -20,10 +27,13 @@ Usage (from anywhere; paths default to the repository of this script):
     python3 doc/performance/calculix_peer.py --end-time 0.5   # quick try
     python3 doc/performance/calculix_peer.py --threads 2
     python3 doc/performance/calculix_peer.py --degree 2
+    python3 doc/performance/calculix_peer.py --hex --time-step 0.01
     python3 doc/performance/calculix_peer.py \\
         --compare output/vertical_ds20_3d/tip_trajectory.csv
 
-Needs ccx (Debian: calculix-ccx) and Python 3 with numpy.
+Needs ccx (Debian: calculix-ccx) and Python 3 with numpy; --hex also needs
+our program (build-release/soft-robot, or --build) and the vtk module
+(Debian: python3-paraview).
 
 Steps:
   1. read the gmsh MSH 2.2 mesh (no gmsh module needed) and write
@@ -83,6 +93,17 @@ Differences from our model (also written to the JSON file as caveats):
     own rings 7.9 % above our mean dilatation (doc/locking.md). The
     mass matrix and the gravity load are ccx's own (not necessarily the
     same quadrature as ours).
+  * Hexahedra (--hex). Our program writes the mesh: one step of the scene
+    from rest with the hexahedral overrides, whose first VTU file holds
+    each cell's 27 points placed by our mapping of degree 2 (deal.II's
+    lexicographic patch points; shared points are merged and must number
+    exactly the mesh's quadratic nodes). ccx's 20-node elements take the
+    corners and mid-edge points, not the face and cell centres: the
+    serendipity element, where ours is the 27-node Lagrange one with the
+    linear dilatation (Finite element/Volumetric formulation). The clamp
+    is the nodes at the smallest x (the base face), the symmetry planes
+    the nodes at y = 0 and z = 0, the hold the block's faces at the
+    largest x, with the cylindrical block's 1.08824 kPa.
   * Tip quantity. We track the centre of mass of material 2. Here the tip
     displacement is the volume-weighted mean displacement of material 2,
     sum over its elements of V_e times the mean of the element's four
@@ -141,6 +162,14 @@ CASE = {
     "end_time": 5.25,
     "alpha": -0.25,
 }
+
+# The hexahedral mesh (--hex): the overrides that make it (the README's),
+# and the hold on the cylindrical block's end face (958.4 mN on 880.69 mm^2).
+HEX_OVERRIDES = ["Geometry/Mesh source=bellows",
+                 "Geometry/Mesh file=../../meshes/bellows.geo",
+                 "Finite element/Polynomial degree=2",
+                 "Finite element/Volumetric formulation=linear dilatation"]
+HEX_HOLD_TRACTION = 1.08824
 
 ARRUDA_BOYCE_LOCKING_STRETCH = 1e4  # large: the potential is neo-Hookean
 JOB = "job"
@@ -329,6 +358,195 @@ def build_model(mesh_path, degree=1):
     return model
 
 
+# ---------------------------------------------------------------------------
+# The hexahedral mesh (--hex)
+# ---------------------------------------------------------------------------
+# deal.II's patch points of a hexahedron are lexicographic in the reference
+# coordinates (xi, eta, zeta), index i + 3 j + 9 k for i, j, k in {0, 1, 2}.
+# ccx's C3D20 (manual, element C3D20): corners 1-4 at zeta = -1 and 5-8 at
+# zeta = 1, then the mid-edge nodes of the edges 1-2, 2-3, 3-4, 4-1, 5-6,
+# 6-7, 7-8, 8-5, 1-5, 2-6, 3-7, 4-8.
+C3D20_FROM_LEXICOGRAPHIC = (0, 2, 8, 6, 18, 20, 26, 24,
+                            1, 5, 7, 3, 19, 23, 25, 21, 9, 11, 17, 15)
+# The reference coordinate that is constant on each of ccx's six faces
+# (manual, *DLOAD: 1: 1-2-3-4, 2: 5-8-7-6, 3: 1-5-6-2, 4: 2-6-7-3,
+# 5: 3-7-8-4, 6: 4-8-5-1), as (axis, index).
+C3D20_FACES = {1: (2, 0), 2: (2, 2), 3: (1, 0), 4: (0, 2), 5: (1, 2), 6: (0, 0)}
+GAUSS_3 = (np.array([-math.sqrt(0.6), 0.0, math.sqrt(0.6)]), np.array([5.0, 8.0, 5.0]) / 9.0)
+
+
+def quadratic_1d(s):
+    """The three quadratic Lagrange polynomials on [-1, 1] with nodes -1, 0,
+    1 at s, and their derivatives."""
+    return (np.array([0.5 * s * (s - 1), 1 - s * s, 0.5 * s * (s + 1)]),
+            np.array([s - 0.5, -2 * s, s + 0.5]))
+
+
+def lexicographic_jacobian(points27, xi):
+    """The Jacobian of the 27-node map at the reference point xi."""
+    (a, da), (b, db), (c, dc) = (quadratic_1d(x) for x in xi)
+    jacobian = np.zeros((3, 3))
+    for k in range(3):
+        for j in range(3):
+            for i in range(3):
+                x = points27[i + 3 * j + 9 * k]
+                jacobian[:, 0] += x * da[i] * b[j] * c[k]
+                jacobian[:, 1] += x * a[i] * db[j] * c[k]
+                jacobian[:, 2] += x * a[i] * b[j] * dc[k]
+    return jacobian
+
+
+def serendipity_values(xi):
+    """The shape functions of the 20-node hexahedron at xi, in ccx's order."""
+    values = []
+    for index in C3D20_FROM_LEXICOGRAPHIC:
+        node = np.array([index % 3, (index // 3) % 3, index // 9]) - 1.0
+        if np.all(node != 0):
+            values.append(np.prod(1 + xi * node) * (np.dot(xi, node) - 2) / 8)
+        else:
+            value = 0.25
+            for x, n in zip(xi, node):
+                value *= (1 - x * x) if n == 0 else (1 + x * n)
+            values.append(value)
+    return np.array(values)
+
+
+def element_integrals(points27):
+    """Volume of a cell (27-node map, 3 x 3 x 3 Gauss points) and the
+    integrals of the 20 serendipity shape functions over it."""
+    nodes, weights = GAUSS_3
+    volume, integrals = 0.0, np.zeros(20)
+    for k in range(3):
+        for j in range(3):
+            for i in range(3):
+                xi = np.array([nodes[i], nodes[j], nodes[k]])
+                dv = np.linalg.det(lexicographic_jacobian(points27, xi)) * \
+                    weights[i] * weights[j] * weights[k]
+                volume += dv
+                integrals += serendipity_values(xi) * dv
+    return volume, integrals
+
+
+def face_area(points27, axis, index):
+    """Area of one face of a cell, from its 3 x 3 points (Gauss 3 x 3)."""
+    grid = np.array(points27).reshape(3, 3, 3, 3)  # [k][j][i][coordinate]
+    face = np.take(grid, index, axis=2 - axis)  # the 3 x 3 points of the face
+    nodes, weights = GAUSS_3
+    area = 0.0
+    for b in range(3):
+        for a in range(3):
+            (la, da), (lb, db) = quadratic_1d(nodes[a]), quadratic_1d(nodes[b])
+            ds = sum(face[n][m] * da[m] * lb[n] for n in range(3) for m in range(3))
+            dt = sum(face[n][m] * la[m] * db[n] for n in range(3) for m in range(3))
+            area += np.linalg.norm(np.cross(ds, dt)) * weights[a] * weights[b]
+    return area
+
+
+def write_hex_mesh(options, workdir):
+    """Run our program for one step of the scene from rest on the
+    hexahedral mesh, with VTU output; returns the first VTU file."""
+    program = Path(options.build) / "soft-robot"
+    if not program.exists():
+        sys.exit("%s not found: build the program first (--build names its directory)" % program)
+    output = workdir / "mesh"
+    entries = HEX_OVERRIDES + options.hex_overrides + [
+        "Loads and constraints/Function constants=hold=%g" % HEX_HOLD_TRACTION,
+        "Initial conditions/Type=expressions",
+        "Time integration/Time step=%g" % options.time_step,
+        "Time integration/End time=%g" % options.time_step,
+        "Output/Write VTU=true", "Output/Spectral analysis=false",
+        "Output/Existing output=replace", "Problem/Output directory=%s" % output]
+    command = [str(program), CASE["scene"]]
+    for entry in entries:
+        command += ["--set", entry]
+    result = subprocess.run(command, cwd=REPOSITORY, capture_output=True, text=True)
+    if result.returncode != 0:
+        sys.exit("writing the hexahedral mesh failed:\n%s%s" % (result.stdout, result.stderr))
+    match = re.search(r"Degrees of freedom: (\d+)", result.stdout)
+    return output / "solution_00000.0.vtu", int(match.group(1)) if match else None
+
+
+def build_hex_model(options, workdir):
+    """The model dictionary of build_model() for the hexahedral mesh, from
+    the cells' 27 points in our VTU output (see the docstring)."""
+    try:
+        import vtk
+        from vtk.util.numpy_support import vtk_to_numpy
+    except ImportError:
+        sys.exit("--hex needs the vtk module (Debian: python3-paraview)")
+    path, our_dofs = write_hex_mesh(options, workdir)
+    reader = vtk.vtkXMLUnstructuredGridReader()
+    reader.SetFileName(str(path))
+    reader.Update()
+    grid = reader.GetOutput()
+    points = vtk_to_numpy(grid.GetPoints().GetData()).astype(float)
+    material = vtk_to_numpy(grid.GetCellData().GetArray("material_id"))
+    n_cells = len(points) // 27
+    subcells = len(material) // n_cells  # linear cells per patch (8)
+    # shared points: equal to the precision of the file's numbers
+    scale = 1e-5 * np.abs(points).max()
+    keys, numbers = np.unique(np.round(points / scale).astype(np.int64), axis=0,
+                              return_inverse=True)
+    numbers = numbers.ravel()
+    if our_dofs is not None and 3 * len(keys) != our_dofs:
+        sys.exit("%s: %d distinct points for %d unknowns: the cells' points do not match"
+                 % (path, len(keys), our_dofs))
+    node_points = np.zeros((len(keys), 3))
+    node_points[numbers] = points
+
+    model = {"degree": 2, "element_type": "C3D20", "node_sets": {},
+             "elements": {}, "hold_traction": HEX_HOLD_TRACTION}
+    cells = {1: [], 2: []}
+    mirror = [2 - (i % 3) + 3 * ((i // 3) % 3) + 9 * (i // 9) for i in range(27)]
+    for cell in range(n_cells):
+        patch = list(range(27 * cell, 27 * cell + 27))
+        if np.linalg.det(lexicographic_jacobian(points[patch], np.zeros(3))) < 0:
+            patch = [patch[m] for m in mirror]  # ccx needs positive volumes
+        cells[int(material[cell * subcells])].append(patch)
+    x_max = node_points[:, 0].max()
+    first = 1
+    tip_integrals = {}
+    for tag, name in ((1, "SILICONE"), (2, "BLOCK")):
+        conn, volumes = [], []
+        for patch in cells[tag]:
+            volume, integrals = element_integrals(points[patch])
+            nodes = [int(numbers[patch[m]]) + 1 for m in C3D20_FROM_LEXICOGRAPHIC]
+            conn.append(nodes)
+            volumes.append(volume)
+            if tag == 2:
+                for n, w in zip(nodes, integrals):
+                    tip_integrals[n] = tip_integrals.get(n, 0.0) + w
+        model["elements"][name] = {"ids": np.arange(first, first + len(conn)),
+                                   "conn": np.array(conn), "volumes": np.array(volumes)}
+        first += len(conn)
+    # The hold: the block's faces all of whose points lie at the largest x.
+    model["hold"] = []
+    for e, patch in enumerate(cells[2]):
+        grid_points = points[patch].reshape(3, 3, 3, 3)
+        for number, (axis, index) in C3D20_FACES.items():
+            face = np.take(grid_points, index, axis=2 - axis).reshape(-1, 3)
+            if np.all(face[:, 0] > x_max - 1e-6):
+                model["hold"].append((e, number, None, face_area(points[patch], axis, index),
+                                      np.array([1.0, 0.0, 0.0])))
+    used = np.unique(np.concatenate([e["conn"].ravel() for e in model["elements"].values()]))
+    model["node_ids"], model["points"] = used, node_points[used - 1]
+    p = model["points"]
+    tolerance = 1e-6 * np.abs(p).max()
+    model["node_sets"]["NB1"] = used[p[:, 0] < p[:, 0].min() + tolerance]
+    model["node_sets"]["NB3"] = used[np.abs(p[:, 1]) < tolerance]
+    model["node_sets"]["NB4"] = used[np.abs(p[:, 2]) < tolerance]
+    block_volume = model["elements"]["BLOCK"]["volumes"].sum()
+    model["tip_nodes"] = np.array(sorted(tip_integrals))
+    model["tip_weights"] = np.array([tip_integrals[n] for n in model["tip_nodes"]]) / block_volume
+    index = {n: k for k, n in enumerate(used)}
+    q = np.array([p[index[n]] for n in model["tip_nodes"]])
+    on_axis = np.nonzero(np.abs(q[:, 1]) + np.abs(q[:, 2]) < tolerance)[0]
+    model["axis_node"] = int(model["tip_nodes"][on_axis[np.argmax(q[on_axis, 0])]])
+    model["label"] = "hexahedral bellows mesh%s" % (
+        " (%s)" % ", ".join(options.hex_overrides) if options.hex_overrides else " hex-1-3-1-2")
+    return model
+
+
 def densities_from_masses(model):
     """The scene prescribes masses (the mesh's volume is not that of the
     revolved section), so the densities follow from the mesh's volumes."""
@@ -377,8 +595,12 @@ def write_input(path, model, options, densities):
     out += ["%d, %.12g, %.12g, %.12g" % (n, *x) for n, x in zip(model["node_ids"], model["points"])]
     for name, elements in model["elements"].items():
         out.append("*ELEMENT, TYPE=%s, ELSET=%s" % (model["element_type"], name))
-        out += [", ".join(str(v) for v in (e, *c))
-                for e, c in zip(elements["ids"], elements["conn"])]
+        # at most 16 entries a line: a 20-node element continues on a second
+        for e, c in zip(elements["ids"], elements["conn"]):
+            entries = [str(v) for v in (e, *c)]
+            out += [", ".join(entries[:16]) + ("," if len(entries) > 16 else "")]
+            if len(entries) > 16:
+                out.append(", ".join(entries[16:]))
     out += ["*ELSET, ELSET=EALL", "SILICONE, BLOCK"]
     for name, nodes in model["node_sets"].items():
         out += ["*NSET, NSET=%s" % name, id_lines(nodes)]
@@ -397,7 +619,7 @@ def write_input(path, model, options, densities):
     # traction) nothing at the corners and a third per mid-edge node
     hold_forces = {}
     block_conn = model["elements"]["BLOCK"]["conn"]
-    for e, _, tri, area, normal in model["hold"]:
+    for e, _, tri, area, normal in (model["hold"] if options.hold_load == "cload" else []):
         if model["degree"] == 1:
             loaded = tri
         else:
@@ -406,14 +628,14 @@ def write_input(path, model, options, densities):
             loaded = [block_conn[e][4 + k] for k, (i, j) in enumerate(C3D10_EDGES)
                       if i in on_face and j in on_face]
         for n in loaded:
-            force = -CASE["hold_traction"] * area / 3 * normal
+            force = -model.get("hold_traction", CASE["hold_traction"]) * area / 3 * normal
             hold_forces[n] = hold_forces.get(n, 0.0) + force
 
     def hold(scale):
         if options.hold_load == "pressure":
             # a positive pressure pushes against the outward normal (+x on
             # the bottom face): a force in -x, upwards
-            value = scale * CASE["hold_traction"]
+            value = scale * model.get("hold_traction", CASE["hold_traction"])
             return ["*DLOAD"] + ["HOLD%d, P%d, %.10g" % (k, k, value) for k in sorted(hold_sets)]
         lines = ["*CLOAD"]
         for n, force in sorted(hold_forces.items()):
@@ -455,7 +677,8 @@ def write_input(path, model, options, densities):
     out += ["*NODE PRINT, NSET=NTIP, FREQUENCY=1", "U", "*END STEP", ""]
     Path(path).write_text("\n".join(out))
 
-    return CASE["hold_traction"] * sum(area for _, _, _, area, _ in model["hold"])
+    return model.get("hold_traction", CASE["hold_traction"]) * sum(
+        area for _, _, _, area, _ in model["hold"])
 
 
 # ---------------------------------------------------------------------------
@@ -656,10 +879,17 @@ def caveats(options):
         "hold released in full at the start of the dynamic step (ours: HHT-weighted, 25 % of it "
         "still acts in the first time step)",
         "wall time is the whole ccx run (input, static step, dynamic step, .dat output)",
-    ] + ([] if options.degree == 1 else [
+    ] + ([hex_caveat(options)] if options.hex else [] if options.degree == 1 else [
         "C3D10 in the displacement formulation (ours: the same quadratic elements with mean "
         "dilatation); on this mesh at kappa = 100 mu our displacement formulation rings 7.9 % "
         "higher than our mean dilatation (2.624 against 2.432 Hz at dt 0.01 s, locking.md)"])
+
+
+def hex_caveat(options):
+    return ("C3D20: 20-node serendipity hexahedra, full integration (3 x 3 x 3 points), in the "
+            "displacement formulation, on the corners and mid-edge points of our cells (ours: "
+            "27-node Lagrange hexahedra with the linear dilatation, or with --set 'Finite "
+            "element/Volumetric formulation=displacement' in the displacement formulation too)")
 
 
 # ---------------------------------------------------------------------------
@@ -672,6 +902,15 @@ def parse_arguments():
                         help="gmsh MSH 2.2 mesh (default: %s)" % CASE["mesh"])
     parser.add_argument("--degree", type=int, choices=(1, 2), default=1,
                         help="element degree: 1 for C3D4 (default), 2 for C3D10")
+    parser.add_argument("--hex", action="store_true",
+                        help="the hexahedral mesh of the bellows (ccx's 20-node hexahedra) "
+                        "instead of the gmsh mesh")
+    parser.add_argument("--hex-overrides", action="append", default=[], metavar="ENTRY",
+                        help="with --hex: a further --set entry of the mesh, e.g. "
+                        "'Geometry/Bellows/Cells through the wall=2' (repeatable)")
+    parser.add_argument("--build", default=str(REPOSITORY / "build-release"),
+                        help="with --hex: the build directory of our program, which writes "
+                        "the mesh (default: build-release)")
     parser.add_argument("--end-time", type=float, default=CASE["end_time"],
                         help="end of the oscillation [s] (default: %g)" % CASE["end_time"])
     parser.add_argument("--time-step", type=float, default=CASE["time_step"],
@@ -705,7 +944,11 @@ def main():
     for suffix in (".dat", ".sta", ".frd", ".cvg", ".log"):
         (workdir / (JOB + suffix)).unlink(missing_ok=True)
 
-    model = build_model(options.mesh, options.degree)
+    if options.hex and options.hold_load != "pressure":
+        sys.exit("--hex applies the hold as a pressure only (--hold-load pressure)")
+    model = (build_hex_model(options, workdir) if options.hex
+             else build_model(options.mesh, options.degree))
+    mesh_label = model.get("label", Path(options.mesh).name)
     densities = densities_from_masses(model)
     hold_force = write_input(workdir / (JOB + ".inp"), model, options, densities)
     n_nodes = len(model["node_ids"])
@@ -714,7 +957,7 @@ def main():
 
     print("CalculiX %s peer of %s" % (version, CASE["scene"]))
     print("  mesh %s: %d nodes, %d %s elements, %d dofs (%d unconstrained)"
-          % (Path(options.mesh).name, n_nodes, n_elements, model["element_type"], n_dofs,
+          % (mesh_label, n_nodes, n_elements, model["element_type"], n_dofs,
              n_free_dofs))
     print("  densities: silicone %.6g, block %.6g kg/mm^3; hold %.5g mN on %d faces"
           % (densities["SILICONE"], densities["BLOCK"], hold_force, len(model["hold"])))
@@ -730,7 +973,7 @@ def main():
         "case": CASE["scene"],
         "solver": "CalculiX ccx",
         "ccx_version": version,
-        "mesh": Path(options.mesh).name,
+        "mesh": mesh_label,
         "nodes": n_nodes,
         "elements": n_elements,
         "element_type": model["element_type"],
