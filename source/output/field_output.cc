@@ -105,7 +105,13 @@ namespace SoftRobot
     const unsigned int                                 index,
     const std::vector<std::pair<double, std::string>> &records) const
   {
-    data_out.build_patches(mapping, subdivisions);
+    // Every cell through the mapping, not only those at the boundary
+    // (deal.II's default): on a curved mesh an interior cell's points
+    // would otherwise lie on straight lines, away from the points its
+    // curved neighbours give the same edges.
+    data_out.build_patches(mapping,
+                           subdivisions,
+                           DataOut<dim>::CurvedCellRegion::curved_inner_cells);
 
     const std::string  stem = "solution_" + Utilities::int_to_string(index, 5);
     const unsigned int rank_digits = Utilities::needed_digits(n_processes - 1);

@@ -97,7 +97,10 @@ namespace SoftRobot
       "solution_" + Utilities::int_to_string(entries.size(), 5) + ".h5";
     const std::string file = directory + entry.solution_file;
 
-    data_out.build_patches(mapping, subdivisions);
+    // Every cell through the mapping, as in FieldOutput::write_files().
+    data_out.build_patches(mapping,
+                           subdivisions,
+                           DataOut<dim>::CurvedCellRegion::curved_inner_cells);
     DataOutBase::DataOutFilter filter(
       DataOutBase::DataOutFilterFlags(/*filter_duplicate_vertices=*/true,
                                       /*xdmf_hdf5_output=*/true));
