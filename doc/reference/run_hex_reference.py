@@ -32,11 +32,12 @@ from pathlib import Path
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 from run_reference import (SOLVER, load_case, percent,  # noqa: E402
                            read_vertical, run_scene)
-from run_benchmarks import write_with_discussion_link  # noqa: E402
+from run_benchmarks import (HEX_HOLD_TRACTION, HEX_OVERRIDES,  # noqa: E402
+                            write_with_discussion_link)
 from study_session import run_lines, study_main  # noqa: E402
 
 RECORD = 2.5  # s
-HOLD = {"cylinder": "hold=1.08824", "box": "hold=1.1397"}
+HOLD = {"cylinder": f"hold={HEX_HOLD_TRACTION:g}", "box": "hold=1.1397"}
 DEFAULT = "hex-1-3-1-2"
 
 # mesh label: (overrides, what it is)
@@ -55,9 +56,7 @@ MESHES = {
     "hex-1-3-1-2-refined": (["Geometry/Global refinements=1"],
                             "the default refined once"),
 }
-HEXAHEDRA = ["Geometry/Mesh source=bellows",
-             "Geometry/Mesh file=../../meshes/bellows.geo",
-             "Finite element/Volumetric formulation=linear dilatation"]
+HEXAHEDRA = HEX_OVERRIDES
 DISPLACEMENT = ["Finite element/Volumetric formulation=displacement"]
 MEAN_DILATATION = ["Finite element/Volumetric formulation=mean dilatation"]
 TETRAHEDRA = ["Geometry/Mesh source=file",
