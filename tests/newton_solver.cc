@@ -732,6 +732,76 @@ namespace
 
 
 
+  // @sect4{... and not when `Rebuild threshold` allows its rate}
+  //
+  // The system of the previous test, whose old matrix converges at the rate
+  // $\rho = 0.7$. With `Rebuild threshold` = 0.8 that rate is accepted:
+  // the caller's matrix serves every iteration, each reducing the residual
+  // by about $\rho$, to the tolerance. With 0.6 the same first iteration
+  // is too slow and the tangent is rebuilt at $\mathbf u_1$, as with the
+  // default 0.5. Both end at the same solution.
+  TEST(NewtonSolverTest, ModifiedNewtonKeepsItsMatrixWithinTheRebuildThreshold)
+  {
+    const CubicSystem system;
+    const double      rho = 0.7;
+    Vector<double>    start(system.exact);
+    start.add(0.01, Vector<double>{1., -1., 1., 1.});
+    std::vector<Vector<double>> solutions;
+    for (const double threshold : {0.8, 0.6})
+      {
+        TestProblem                 test(CubicSystem::n, system.model());
+        std::ostringstream          output;
+        ConditionalOStream          pcout(output, true);
+        Parameters::NonlinearSolver parameters = default_parameters();
+        parameters.tangent_update =
+          Parameters::NonlinearSolver::TangentUpdate::every_step;
+        parameters.rebuild_threshold         = threshold;
+        parameters.acceleration_depth        = 0;
+        parameters.newton_max_iterations     = 40;
+        parameters.newton_absolute_tolerance = 0.;
+        parameters.newton_relative_tolerance = 1e-8;
+        const NewtonSolver solver(parameters, pcout);
+
+        FullMatrix<double> K = system.tangent(system.exact);
+        K *= 1. / (1. - rho);
+        test.prepare(K);
+        DistributedVector          u = test.vector(start);
+        const NewtonSolver::Result result =
+          solver.solve(u, test.problem(), system.b.l2_norm(), true);
+        std::cout << "threshold " << threshold << ": " << result.iterations
+                  << " iterations, " << test.n_prepared << " matrices prepared"
+                  << std::endl;
+        if (threshold > rho)
+          {
+            EXPECT_EQ(test.n_prepared, 0u);
+            ASSERT_EQ(test.calls.size(), result.iterations + 1);
+            for (unsigned int k = 0; k + 1 < test.calls.size(); ++k)
+              {
+                EXPECT_FALSE(test.calls[k + 1].with_tangent);
+                EXPECT_NEAR(test.calls[k + 1].residual_norm /
+                              test.calls[k].residual_norm,
+                            rho,
+                            system.rate_tolerance(test.calls[k],
+                                                  test.calls[k + 1]))
+                  << "iteration " << k;
+              }
+          }
+        else
+          {
+            EXPECT_EQ(test.n_prepared, 1u);
+            ASSERT_GE(test.calls.size(), 3u);
+            EXPECT_TRUE(test.calls[2].with_tangent);
+          }
+        solutions.push_back(test.values(u));
+        EXPECT_LE(difference(solutions.back(), system.exact).l2_norm(),
+                  1e-6 * system.exact.l2_norm());
+      }
+    EXPECT_LE(difference(solutions[0], solutions[1]).l2_norm(),
+              1e-6 * system.exact.l2_norm());
+  }
+
+
+
   // @sect4{... after `Max iterations` iterations with one matrix}
   //
   // With $\rho = 0.3$ and `Max iterations` = 4, the caller's matrix serves

@@ -310,6 +310,7 @@ namespace SoftRobot
       double        newton_absolute_tolerance;
       double        newton_relative_tolerance;
       TangentUpdate tangent_update;
+      double        rebuild_threshold;
       unsigned int  acceleration_depth;
       bool          tangent_extrapolation;
       bool          line_search;

@@ -903,7 +903,7 @@ namespace SoftRobot
         "step': the tangent of the last converged state, built and "
         "factorized once per step, for all iterations of the step (modified "
         "Newton); it is rebuilt at the current iterate when an iteration "
-        "reduces the residual by less than a factor of two. 'when needed': "
+        "reduces the residual too little (see Rebuild threshold). 'when needed': "
         "as 'every step', but the matrix and its factorization are kept "
         "from step to step as long as the iterations converge with them; "
         "it is rebuilt at the current iterate by the same rule, and after a "
@@ -912,6 +912,19 @@ namespace SoftRobot
         "'every iteration' for smooth motions, and 'when needed' saves the "
         "matrices and factorizations of the steps that converge with the "
         "old one. The static equilibrium always uses 'every iteration'.");
+      prm.declare_entry(
+        "Rebuild threshold",
+        "0.5",
+        Patterns::Double(0.01, 1),
+        "With 'Tangent update = every step' or 'when needed': the matrix is "
+        "rebuilt at the current iterate when an iteration with the old one "
+        "leaves more than this fraction of the residual (0.5: when it "
+        "reduces the residual by less than a factor of two). A rebuild "
+        "costs an assembly of the tangent and a factorization, often as "
+        "much as several iterations with the old matrix; where the old "
+        "matrix still converges steadily, a larger value trades rebuilds "
+        "for iterations. The converged answer is the same to the "
+        "tolerance.");
       prm.declare_entry(
         "Acceleration depth",
         "2",
@@ -963,6 +976,7 @@ namespace SoftRobot
                                         TangentUpdate::when_needed})
         if (update == name_of(value))
           tangent_update = value;
+      rebuild_threshold     = prm.get_double("Rebuild threshold");
       acceleration_depth    = prm.get_integer("Acceleration depth");
       tangent_extrapolation = prm.get_bool("Tangent extrapolation");
       line_search           = prm.get_bool("Line search");

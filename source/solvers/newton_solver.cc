@@ -393,9 +393,10 @@ namespace SoftRobot
   //
   // After an accepted step of the modified variant: the matrix is no
   // longer the tangent at the iterate, and it is rebuilt in the next
-  // iteration if this one reduced the residual by less than a factor of
-  // two, or if it has now served `Max iterations` iterations (counted from
-  // the caller's matrix, or from the last rebuilt one).
+  // iteration if this one left more than `Rebuild threshold` of the
+  // residual (by default: reduced it by less than a factor of two), or if
+  // it has now served `Max iterations` iterations (counted from the
+  // caller's matrix, or from the last rebuilt one).
   void
   NewtonSolver::schedule_tangent_update(IterationState &state,
                                         const double    previous_norm) const
@@ -405,7 +406,7 @@ namespace SoftRobot
     ++state.iterations_with_tangent;
     state.tangent_is_current = false;
     state.rebuild_tangent =
-      (state.norm > 0.5 * previous_norm) ||
+      (state.norm > parameters.rebuild_threshold * previous_norm) ||
       (state.iterations_with_tangent >= parameters.newton_max_iterations);
   }
 
