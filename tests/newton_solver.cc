@@ -222,6 +222,24 @@ namespace
     return parameters;
   }
 
+  // The parameters of the modified variant's tests: the caller's matrix
+  // for all iterations (`every step`), Anderson acceleration of the given
+  // depth, and only the relative tolerance.
+  Parameters::NonlinearSolver
+  modified_parameters(const double       relative_tolerance,
+                      const unsigned int acceleration_depth = 0)
+  {
+    Parameters::NonlinearSolver parameters = default_parameters();
+    parameters.tangent_update =
+      Parameters::NonlinearSolver::TangentUpdate::every_step;
+    parameters.acceleration_depth        = acceleration_depth;
+    parameters.newton_absolute_tolerance = 0.;
+    parameters.newton_relative_tolerance = relative_tolerance;
+    return parameters;
+  }
+
+
+
   // Dense helpers for the theory: $\mathbf M^{-1}\mathbf v$, norms.
   Vector<double>
   solve_dense(const FullMatrix<double> &matrix, const Vector<double> &rhs)
@@ -609,13 +627,8 @@ namespace
     TestProblem                 test(CubicSystem::n, system.model());
     std::ostringstream          output;
     ConditionalOStream          pcout(output, true);
-    Parameters::NonlinearSolver parameters = default_parameters();
-    parameters.tangent_update =
-      Parameters::NonlinearSolver::TangentUpdate::every_step;
-    parameters.acceleration_depth        = 0;
-    parameters.newton_max_iterations     = 40;
-    parameters.newton_absolute_tolerance = 0.;
-    parameters.newton_relative_tolerance = 1e-12;
+    Parameters::NonlinearSolver parameters = modified_parameters(1e-12);
+    parameters.newton_max_iterations       = 40;
     const NewtonSolver solver(parameters, pcout);
 
     const double       rho = 0.3;
@@ -687,13 +700,8 @@ namespace
     TestProblem                 test(CubicSystem::n, system.model());
     std::ostringstream          output;
     ConditionalOStream          pcout(output, true);
-    Parameters::NonlinearSolver parameters = default_parameters();
-    parameters.tangent_update =
-      Parameters::NonlinearSolver::TangentUpdate::every_step;
-    parameters.acceleration_depth        = 0;
-    parameters.newton_absolute_tolerance = 0.;
-    parameters.newton_relative_tolerance = 1e-12;
-    const NewtonSolver solver(parameters, pcout);
+    Parameters::NonlinearSolver parameters = modified_parameters(1e-12);
+    const NewtonSolver          solver(parameters, pcout);
 
     const double       rho = 0.7;
     FullMatrix<double> K   = system.tangent(system.exact);
@@ -752,14 +760,9 @@ namespace
         TestProblem                 test(CubicSystem::n, system.model());
         std::ostringstream          output;
         ConditionalOStream          pcout(output, true);
-        Parameters::NonlinearSolver parameters = default_parameters();
-        parameters.tangent_update =
-          Parameters::NonlinearSolver::TangentUpdate::every_step;
-        parameters.rebuild_threshold         = threshold;
-        parameters.acceleration_depth        = 0;
-        parameters.newton_max_iterations     = 40;
-        parameters.newton_absolute_tolerance = 0.;
-        parameters.newton_relative_tolerance = 1e-8;
+        Parameters::NonlinearSolver parameters = modified_parameters(1e-8);
+        parameters.rebuild_threshold           = threshold;
+        parameters.newton_max_iterations       = 60;
         const NewtonSolver solver(parameters, pcout);
 
         FullMatrix<double> K = system.tangent(system.exact);
@@ -814,13 +817,8 @@ namespace
     TestProblem                 test(CubicSystem::n, system.model());
     std::ostringstream          output;
     ConditionalOStream          pcout(output, true);
-    Parameters::NonlinearSolver parameters = default_parameters();
-    parameters.tangent_update =
-      Parameters::NonlinearSolver::TangentUpdate::every_step;
-    parameters.acceleration_depth        = 0;
-    parameters.newton_max_iterations     = 4;
-    parameters.newton_absolute_tolerance = 0.;
-    parameters.newton_relative_tolerance = 1e-12;
+    Parameters::NonlinearSolver parameters = modified_parameters(1e-12);
+    parameters.newton_max_iterations       = 4;
     const NewtonSolver solver(parameters, pcout);
 
     FullMatrix<double> K = system.tangent(system.exact);
@@ -867,13 +865,8 @@ namespace
     TestProblem                 test(CubicSystem::n, system.model());
     std::ostringstream          output;
     ConditionalOStream          pcout(output, true);
-    Parameters::NonlinearSolver parameters = default_parameters();
-    parameters.tangent_update =
-      Parameters::NonlinearSolver::TangentUpdate::every_step;
-    parameters.acceleration_depth        = 0;
-    parameters.newton_absolute_tolerance = 0.;
-    parameters.newton_relative_tolerance = 1e-12;
-    const NewtonSolver solver(parameters, pcout);
+    Parameters::NonlinearSolver parameters = modified_parameters(1e-12);
+    const NewtonSolver          solver(parameters, pcout);
 
     FullMatrix<double> K = system.tangent(system.exact);
     K *= 1. / 3.;
@@ -1114,13 +1107,9 @@ namespace
       TestProblem                 test(n, linear);
       std::ostringstream          output;
       ConditionalOStream          pcout(output, true);
-      Parameters::NonlinearSolver parameters = default_parameters();
-      parameters.tangent_update =
-        Parameters::NonlinearSolver::TangentUpdate::every_step;
-      parameters.acceleration_depth        = depth;
-      parameters.newton_max_iterations     = 100;
-      parameters.newton_absolute_tolerance = 0.;
-      parameters.newton_relative_tolerance = 1e-10;
+      Parameters::NonlinearSolver parameters =
+        modified_parameters(1e-10, depth);
+      parameters.newton_max_iterations = 100;
       const NewtonSolver solver(parameters, pcout);
       test.prepare(K);
       DistributedVector          u = test.vector(Vector<double>(n));

@@ -28,10 +28,10 @@
 // In the modified variant the matrix prepared by the caller (the tangent
 // of the last converged state) serves all iterations, and the evaluations
 // compute residuals only. When an iteration reduces the residual by less
-// than a factor of two (by default; see `Rebuild threshold`), when `Max iterations` iterations have used the same
-// old matrix, or when the full step fails with it, the tangent is rebuilt
-// at the current iterate. The modified variant is allowed twice the
-// iterations of the full one.
+// than a factor of two (by default; see `Rebuild threshold`), when `Max
+// iterations` iterations have used the same old matrix, or when the full
+// step fails with it, the tangent is rebuilt at the current iterate. The
+// modified variant is allowed twice the iterations of the full one.
 //
 // The modified iterations are a fixed-point iteration, and Anderson
 // acceleration (see AndersonAcceleration) speeds them up: its step is
