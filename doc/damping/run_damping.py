@@ -45,7 +45,7 @@ import numpy as np
 REPOSITORY = Path(__file__).resolve().parents[2]
 sys.path.insert(0, str(REPOSITORY / "doc"))
 sys.path.insert(0, str(REPOSITORY / "doc" / "stability"))
-from study_session import run_lines, study_main  # noqa: E402
+from study_session import run_lines, study_main, tetrahedral_defaults  # noqa: E402
 from run_stability import read_trajectory, run_program  # noqa: E402
 
 QUIET = ["Output/Progress interval=0", "Output/Write VTU=false",
@@ -95,7 +95,8 @@ def run_case(build, output_root, name, timeout, threads):
         shutil.rmtree(output)
     output.mkdir(parents=True)
     command = [str(build / "soft-robot"), scene]
-    for entry in QUIET + overrides + [f"Problem/Output directory={output}"]:
+    for entry in (tetrahedral_defaults(scene) + QUIET + overrides
+                  + [f"Problem/Output directory={output}"]):
         command += ["--set", entry]
     environment = dict(os.environ, DEAL_II_NUM_THREADS=str(threads))
     _, result = run_program(command, environment, output, timeout)

@@ -70,7 +70,7 @@ sys.path.insert(0, str(REPOSITORY / "doc" / "performance"))
 sys.path.insert(0, str(REPOSITORY / "doc" / "stability"))
 sys.path.insert(0, str(REPOSITORY / "doc"))
 from run_benchmarks import write_with_discussion_link  # noqa: E402
-from study_session import run_lines, study_main  # noqa: E402
+from study_session import run_lines, study_main, tetrahedral_defaults  # noqa: E402
 from run_stability import read_trajectory, run_program  # noqa: E402
 
 SCENE_3D = "parameters/bellows/vertical_ds20_3d.prm"
@@ -155,9 +155,9 @@ for dt in (0.01, 0.0025):
                    f"Loads and constraints/Function constants=force=958.4, "
                    f"section={P2MD_SECTION}"] + dt_entry(dt), dt, "run"))
 # Experiments 2 and 3: the 3D half and full models with linear tetrahedra
-# (the scenes as they are) and with quadratic ones in the mean-dilatation
-# formulation on the same coarse meshes and on the medium ones (the
-# references), and the reduced 2D strip of experiment 2.
+# (the scenes', restored by tetrahedral_defaults) and with quadratic ones in
+# the mean-dilatation formulation on the same coarse meshes and on the
+# medium ones (the references), and the reduced 2D strip of experiment 2.
 for scene, experiment in ((SCENE_PLANAR_3D, "planar"), (SCENE_SPHERICAL_3D, "spherical")):
     CASES.append((f"{experiment}_p1_coarse_dt0.01", "3D", "3D P1",
                   "P1 coarse, dt = 0.01", scene, [], 0.01, "run"))
@@ -285,7 +285,8 @@ def run_case(build, output_root, case, timeout, threads):
     else:
         command = [str(build / "soft-robot"), scene,
                    "--set", f"Problem/Output directory={output}"]
-        for entry in QUIET + [f"Time integration/End time={record_of(name):g}"] + overrides:
+        for entry in (tetrahedral_defaults(scene) + QUIET
+                      + [f"Time integration/End time={record_of(name):g}"] + overrides):
             command += ["--set", entry]
         environment = dict(os.environ, OMP_NUM_THREADS="1",
                            DEAL_II_NUM_THREADS=str(threads))

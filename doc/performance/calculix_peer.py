@@ -167,6 +167,9 @@ CASE = {
 # the cylindrical block's end face, those of the benchmark's hexahedral case.
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 from run_benchmarks import HEX_HOLD_TRACTION, HEX_OVERRIDES  # noqa: E402
+# The scene as the benchmark knew it, under the hexahedral overrides.
+sys.path.insert(0, str(REPOSITORY / "doc"))
+from study_session import tetrahedral_defaults  # noqa: E402
 
 ARRUDA_BOYCE_LOCKING_STRETCH = 1e4  # large: the potential is neo-Hookean
 JOB = "job"
@@ -446,7 +449,8 @@ def write_hex_mesh(options, workdir):
     if not program.exists():
         sys.exit("%s not found: build the program first (--build names its directory)" % program)
     output = workdir / "mesh"
-    entries = HEX_OVERRIDES + options.hex_overrides + [
+    entries = (tetrahedral_defaults(CASE["scene"]) + HEX_OVERRIDES
+               + options.hex_overrides) + [
         "Loads and constraints/Function constants=hold=%g" % HEX_HOLD_TRACTION,
         "Initial conditions/Type=expressions",
         "Time integration/Time step=%g" % options.time_step,

@@ -36,6 +36,9 @@ import time
 from pathlib import Path
 
 REPOSITORY = Path(__file__).resolve().parents[2]
+# The scenes' linear tetrahedra, restored for every case (doc/study_session.py).
+sys.path.insert(0, str(REPOSITORY / "doc"))
+from study_session import tetrahedral_defaults  # noqa: E402
 
 HEADLINE = "parameters/bellows/vertical_ds20_3d.prm"
 # (the repeats of a case run into the same directory)
@@ -301,7 +304,7 @@ def run_case_once(build, output_root, case, reuse=False, label=""):
     ensure_mesh(overrides)
     command = [str(build / "soft-robot"), scene,
                "--set", f"Problem/Output directory={output}"]
-    for entry in QUIET + overrides:
+    for entry in tetrahedral_defaults(scene) + QUIET + overrides:
         command += ["--set", entry]
     if processes > 1:
         command = ["mpirun", "-np", str(processes)] + command

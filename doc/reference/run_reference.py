@@ -50,7 +50,7 @@ sys.path.insert(0, str(REPOSITORY / "doc" / "performance"))
 sys.path.insert(0, str(REPOSITORY / "doc" / "stability"))
 sys.path.insert(0, str(REPOSITORY / "doc"))
 from run_benchmarks import write_with_discussion_link  # noqa: E402
-from study_session import run_lines, study_main  # noqa: E402
+from study_session import run_lines, study_main, tetrahedral_defaults  # noqa: E402
 from run_stability import run_program  # noqa: E402
 
 RECORD = 2.5  # s
@@ -136,7 +136,8 @@ def ensure_mesh(level):
 
 
 def run_scene(build, output, name, scene, entries, timeout, threads, read_spectrum):
-    """One run of `scene` with the `--set` entries into a fresh `output`;
+    """One run of `scene` with the `--set` entries (after those of
+    tetrahedral_defaults) into a fresh `output`;
     writes its result.json (the run, the spectrum read_spectrum(output)
     finds, the silicone volume). Shared with run_swing_reference.py."""
     if output.exists():
@@ -144,7 +145,7 @@ def run_scene(build, output, name, scene, entries, timeout, threads, read_spectr
     output.mkdir(parents=True)
     command = [str(build / "soft-robot"), scene,
                "--set", f"Problem/Output directory={output}"]
-    for entry in entries:
+    for entry in tetrahedral_defaults(scene) + entries:
         command += ["--set", entry]
     environment = dict(os.environ, OMP_NUM_THREADS="1",
                        DEAL_II_NUM_THREADS=str(threads))
