@@ -513,7 +513,9 @@ namespace SoftRobot
   // $\mathrm{sym}(\mathbf F^T\mathbf W) \ne 0$, which the Kelvin-Voigt
   // damping resists. Evaluated at $\mathbf x = \mathbf X + \mathbf u_0$,
   // $\mathbf v = \mathbf W\mathbf x$ is rigid for the initial state up to
-  // the interpolation of $\mathbf x$ (exact on the nodes). The points are
+  // the interpolation of $\mathbf x$ (exact on the nodes), except where
+  // the constraints set the velocity to zero (a clamped node that the
+  // rotation would move). The points are
   // the finite element's support points mapped by the scene's mapping, one
   // per local degree of freedom (the elements are Lagrange elements), so
   // each component of each node gets the value at its node's own current
