@@ -1,0 +1,124 @@
+#!/usr/bin/python3
+# SPDX-License-Identifier: LGPL-2.1-or-later
+"""The swing of experiments 2 and 3 on the hexahedral mesh of the bellows
+(issue 23): the scenes' default discretisation (hex-1-3-1-2, quadratic
+hexahedra with the dilatation linear in each cell) against the finer
+hex-2-6-2-2, the mesh within 0.02 % of the refined one in experiment 1
+(doc/reference_hex.md), for the three silicones, and the step halved. The
+companion of run_swing_reference.py, which does the same on tetrahedra,
+with its solver settings, record (4 s, modal fits after the first second)
+and report columns; the push is the scenes' 958.4 mN per direction on the
+cylindrical block's face (1.08824 kPa), and the spherical pendulum keeps
+the scenes' out-of-plane start (v_tip = 200 mm/s).
+
+    /usr/bin/python3 doc/reference/run_swing_hex_reference.py build-release
+        [--cases a,b] [--timeout 3600] [--threads 1] [--report-only]
+
+It writes doc/reference_swing_hex.md; the discussion is the section on the
+swing in doc/reference_discussion.md. Nothing here is a test: the numbers
+are reported, not checked.
+"""
+
+import sys
+from pathlib import Path
+
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+from run_reference import SILICONES, SOLVER, load_case, run_scene  # noqa: E402
+from run_swing_reference import (EXPERIMENTS, RECORD, cell,  # noqa: E402
+                                 change, read_directions)
+from run_benchmarks import (HEX_HOLD_TRACTION, HEX_OVERRIDES,  # noqa: E402
+                            write_with_discussion_link)
+from study_session import run_lines, study_main  # noqa: E402
+
+DEFAULT = "hex-1-3-1-2"
+FINE = "hex-2-6-2-2"
+MESHES = {DEFAULT: [],
+          FINE: ["Geometry/Bellows/Cells through the wall=2",
+                 "Geometry/Bellows/Cells along a flank=6",
+                 "Geometry/Bellows/Cells per chord=2"]}
+
+# name, experiment, silicone key, mesh, time step
+CASES = ([(f"planar_{s}_{mesh}_dt0.01", "planar", s, mesh, 0.01)
+          for s in SILICONES for mesh in (FINE, DEFAULT)] +
+         [(f"planar_ds20_{DEFAULT}_dt0.005", "planar", "ds20", DEFAULT, 0.005),
+          (f"spherical_ds20_{DEFAULT}_dt0.01", "spherical", "ds20", DEFAULT, 0.01)])
+CASE_NAMES = [c[0] for c in CASES]
+
+
+def run_case(build, output_root, name, timeout, threads):
+    _, experiment, silicone, mesh, dt = next(c for c in CASES if c[0] == name)
+    _, prefix, _, _ = EXPERIMENTS[experiment]
+    constants = f"push={HEX_HOLD_TRACTION:g}"
+    if experiment == "spherical":
+        constants += ", v_tip=200"
+    entries = (SOLVER + HEX_OVERRIDES + MESHES[mesh] +
+               [f"Loads and constraints/Function constants={constants}",
+                f"Time integration/End time={RECORD:g}",
+                f"Time integration/Time step={dt:g}"])
+    run_scene(build, output_root / name, name,
+              f"parameters/bellows/{prefix}_{silicone}_3d.prm", entries, timeout,
+              threads, read_directions)
+
+
+def write_report(path, results, session):
+    by_name = {r["name"]: r for r in results
+               if r.get("status") == "finished" and r.get("spectrum")}
+    lines = ["<!-- Written by doc/reference/run_swing_hex_reference.py; the "
+             "discussion is in doc/reference_discussion.md. -->",
+             "# The swing of experiments 2 and 3 on hexahedra", ""]
+    lines += run_lines(session)
+    lines += ["",
+              "Quadratic hexahedra with the dilatation linear in each cell, on "
+              "the meshes hex-T-F-C-Q of [reference_hex.md](reference_hex.md) "
+              "(hex-1-3-1-2 is the scenes' default), HHT α = −0.25, baseline "
+              "parameter set, 4 s of the swing, columns as in "
+              "[reference_swing.md](reference_swing.md): f and ξ are the modal "
+              "fit of the dominant peak of each direction of the tip motion "
+              "after the first second."]
+    for experiment, (title, _, _, directions) in EXPERIMENTS.items():
+        cases = [c for c in CASES if c[1] == experiment]
+        lines += ["", f"## {title}", "",
+                  "| case | mesh | dofs | dt s | "
+                  + " | ".join(f"f {d} Hz | ξ {d}" for d in directions)
+                  + " | wall s | s/step | Newton/step | factorizations/step | "
+                  "cutbacks | peak MB |",
+                  "|---|---|---:|---:|" + "---:|" * (2 * len(directions) + 6)]
+        for name, _, _, mesh, dt in cases:
+            r = by_name.get(name)
+            if not r:
+                lines.append(f"| {name} | {mesh} | | {dt:g} | not run |"
+                             + " |" * (2 * len(directions) + 5))
+                continue
+            lines.append(
+                f"| {name} | {mesh} | {r['dofs']} | {dt:g} | "
+                + " | ".join(f"{cell(r, d, 'f', 5)} | {cell(r, d, 'xi', 5)}"
+                             for d in directions)
+                + f" | {r['wall_seconds']:.1f} | {r['wall_seconds'] / r['steps']:.2f} | "
+                f"{r['newton_iterations'] / r['steps']:.2f} | "
+                f"{r['factorizations_or_amg_setups'] / r['steps']:.2f} | "
+                f"{r['cutbacks']} | {r['peak_memory_mb']:.0f} |")
+        pairs = []
+        for silicone in SILICONES:
+            a = by_name.get(f"{experiment}_{silicone}_{DEFAULT}_dt0.01")
+            b = by_name.get(f"{experiment}_{silicone}_{FINE}_dt0.01")
+            if a and b:
+                pairs.append((f"dt 0.01, {DEFAULT} against {FINE}", silicone, a, b))
+            b = by_name.get(f"{experiment}_{silicone}_{DEFAULT}_dt0.005")
+            if a and b:
+                pairs.append((f"{DEFAULT}, dt 0.01 against 0.005", silicone, a, b))
+        if pairs:
+            lines += ["", "| change | silicone | " + " | ".join(
+                          f"f {d} | ξ {d}" for d in directions) + " |",
+                      "|---|---|" + "---:|" * (2 * len(directions))]
+            for label, silicone, a, b in pairs:
+                lines.append(f"| {label} | {SILICONES[silicone]} | " + " | ".join(
+                    f"{change(a, b, d, 'f')} | {change(a, b, d, 'xi')}"
+                    for d in directions) + " |")
+            lines += ["", "A change is that of the first run relative to the second."]
+    write_with_discussion_link(path, lines, "reference_discussion.md")
+
+
+if __name__ == "__main__":
+    study_main(__doc__, "doc/reference/run_swing_hex_reference.py",
+               "output/reference_swing_hex", "doc/reference_swing_hex.md",
+               CASE_NAMES, run_case, load_case, write_report)
