@@ -44,6 +44,10 @@
 #                              experiment 1 on the hexahedral mesh (quadratic
 #                              hexahedra, linear dilatation) refined in each
 #                              direction; writes doc/reference_hex.md
+#   ./soft-robot.sh swing-hex-reference
+#                              experiments 2 and 3 on the hexahedral mesh: the
+#                              scenes' default against finer meshes, the
+#                              three silicones; writes doc/reference_swing_hex.md
 #
 # Build directories: build-release/ and build-debug/ beside this script.
 set -euo pipefail
@@ -119,13 +123,13 @@ case "${1:-}" in
     script=${1//-/_}
     /usr/bin/python3 "doc/$script/run_$script.py" build-release "${@:2}"
     ;;
-  swing-reference|hex-reference)
+  swing-reference|hex-reference|swing-hex-reference)
     # gmsh for the medium tetrahedral mesh with the cylindrical block
     packages+=(python3-numpy python3-matplotlib gmsh)
     install_missing_packages
     build Release build-release -DSOFT_ROBOT_BUILD_TESTS=OFF
     script=${1%-reference}
-    /usr/bin/python3 "doc/reference/run_${script}_reference.py" build-release "${@:2}"
+    /usr/bin/python3 "doc/reference/run_${script//-/_}_reference.py" build-release "${@:2}"
     ;;
   validate)
     packages+=(python3-matplotlib python3-numpy)
@@ -170,7 +174,7 @@ case "${1:-}" in
     echo "Wrote doc/validation.md"
     ;;
   *)
-    echo "Usage: $0 demo|test|validate|benchmark|stability|locking|error-vs-runtime|twisting-column|damping|pneumatics|reference|swing-reference|hex-reference" >&2
+    echo "Usage: $0 demo|test|validate|benchmark|stability|locking|error-vs-runtime|twisting-column|damping|pneumatics|reference|swing-reference|hex-reference|swing-hex-reference" >&2
     exit 2
     ;;
 esac

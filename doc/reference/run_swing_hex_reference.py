@@ -4,7 +4,8 @@
 (issue 23): the scenes' default discretisation (hex-1-3-1-2, quadratic
 hexahedra with the dilatation linear in each cell) against the finer
 hex-2-6-2-2, the mesh within 0.02 % of the refined one in experiment 1
-(doc/reference_hex.md), for the three silicones, and the step halved. The
+(doc/reference_hex.md), for the three silicones, and the step halved;
+the spherical pendulum against hex-2-3-1-2 (two cells through the wall). The
 companion of run_swing_reference.py, which does the same on tetrahedra,
 with its solver settings, record (4 s, modal fits after the first second)
 and report columns; the push is the scenes' 958.4 mN per direction on the
@@ -32,7 +33,12 @@ from study_session import run_lines, study_main  # noqa: E402
 
 DEFAULT = "hex-1-3-1-2"
 FINE = "hex-2-6-2-2"
+# The full model of hex-2-6-2-2 (about 160,000 unknowns) is beyond a
+# session of this study; the spherical pendulum is refined through the
+# wall only, the direction that moved experiment 1 most.
+THICK = "hex-2-3-1-2"
 MESHES = {DEFAULT: [],
+          THICK: ["Geometry/Bellows/Cells through the wall=2"],
           FINE: ["Geometry/Bellows/Cells through the wall=2",
                  "Geometry/Bellows/Cells along a flank=6",
                  "Geometry/Bellows/Cells per chord=2"]}
@@ -41,7 +47,8 @@ MESHES = {DEFAULT: [],
 CASES = ([(f"planar_{s}_{mesh}_dt0.01", "planar", s, mesh, 0.01)
           for s in SILICONES for mesh in (FINE, DEFAULT)] +
          [(f"planar_ds20_{DEFAULT}_dt0.005", "planar", "ds20", DEFAULT, 0.005),
-          (f"spherical_ds20_{DEFAULT}_dt0.01", "spherical", "ds20", DEFAULT, 0.01)])
+          (f"spherical_ds20_{DEFAULT}_dt0.01", "spherical", "ds20", DEFAULT, 0.01),
+          (f"spherical_ds20_{THICK}_dt0.01", "spherical", "ds20", THICK, 0.01)])
 CASE_NAMES = [c[0] for c in CASES]
 
 
@@ -100,9 +107,10 @@ def write_report(path, results, session):
         pairs = []
         for silicone in SILICONES:
             a = by_name.get(f"{experiment}_{silicone}_{DEFAULT}_dt0.01")
-            b = by_name.get(f"{experiment}_{silicone}_{FINE}_dt0.01")
-            if a and b:
-                pairs.append((f"dt 0.01, {DEFAULT} against {FINE}", silicone, a, b))
+            for mesh in (THICK, FINE):
+                b = by_name.get(f"{experiment}_{silicone}_{mesh}_dt0.01")
+                if a and b:
+                    pairs.append((f"dt 0.01, {DEFAULT} against {mesh}", silicone, a, b))
             b = by_name.get(f"{experiment}_{silicone}_{DEFAULT}_dt0.005")
             if a and b:
                 pairs.append((f"{DEFAULT}, dt 0.01 against 0.005", silicone, a, b))
