@@ -25,8 +25,8 @@ from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 from run_reference import SILICONES, SOLVER, load_case, run_scene  # noqa: E402
-from run_swing_reference import (EXPERIMENTS, RECORD, cell,  # noqa: E402
-                                 change, read_directions)
+from run_swing_reference import (EXPERIMENTS, RECORD,  # noqa: E402
+                                 change_rows, read_directions, runs_table)
 from run_benchmarks import (HEX_HOLD_TRACTION, HEX_OVERRIDES,  # noqa: E402
                             write_with_discussion_link)
 from study_session import run_lines, study_main  # noqa: E402
@@ -83,27 +83,9 @@ def write_report(path, results, session):
               "fit of the dominant peak of each direction of the tip motion "
               "after the first second."]
     for experiment, (title, _, _, directions) in EXPERIMENTS.items():
-        cases = [c for c in CASES if c[1] == experiment]
-        lines += ["", f"## {title}", "",
-                  "| case | mesh | dofs | dt s | "
-                  + " | ".join(f"f {d} Hz | ξ {d}" for d in directions)
-                  + " | wall s | s/step | Newton/step | factorizations/step | "
-                  "cutbacks | peak MB |",
-                  "|---|---|---:|---:|" + "---:|" * (2 * len(directions) + 6)]
-        for name, _, _, mesh, dt in cases:
-            r = by_name.get(name)
-            if not r:
-                lines.append(f"| {name} | {mesh} | | {dt:g} | not run |"
-                             + " |" * (2 * len(directions) + 5))
-                continue
-            lines.append(
-                f"| {name} | {mesh} | {r['dofs']} | {dt:g} | "
-                + " | ".join(f"{cell(r, d, 'f', 5)} | {cell(r, d, 'xi', 5)}"
-                             for d in directions)
-                + f" | {r['wall_seconds']:.1f} | {r['wall_seconds'] / r['steps']:.2f} | "
-                f"{r['newton_iterations'] / r['steps']:.2f} | "
-                f"{r['factorizations_or_amg_setups'] / r['steps']:.2f} | "
-                f"{r['cutbacks']} | {r['peak_memory_mb']:.0f} |")
+        lines += ["", f"## {title}", ""]
+        lines += runs_table([(name, mesh, dt) for name, e, _, mesh, dt in CASES
+                             if e == experiment], by_name, directions)
         pairs = []
         for silicone in SILICONES:
             a = by_name.get(f"{experiment}_{silicone}_{DEFAULT}_dt0.01")
@@ -118,10 +100,7 @@ def write_report(path, results, session):
             lines += ["", "| change | silicone | " + " | ".join(
                           f"f {d} | ξ {d}" for d in directions) + " |",
                       "|---|---|" + "---:|" * (2 * len(directions))]
-            for label, silicone, a, b in pairs:
-                lines.append(f"| {label} | {SILICONES[silicone]} | " + " | ".join(
-                    f"{change(a, b, d, 'f')} | {change(a, b, d, 'xi')}"
-                    for d in directions) + " |")
+            lines += [change_rows(*pair, directions) for pair in pairs]
             lines += ["", "A change is that of the first run relative to the second."]
     write_with_discussion_link(path, lines, "reference_discussion.md")
 

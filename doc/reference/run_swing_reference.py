@@ -91,6 +91,41 @@ def change(a, b, direction, key):
     return percent(x, y) if x is not None and y is not None else "–"
 
 
+def runs_table(cases, by_name, directions):
+    """The table of the runs (name, mesh, time step) in `cases`: unknowns,
+    silicone volume, f and ξ per direction, and the cost; a case without a
+    result is marked 'not run'. Shared with run_swing_hex_reference.py."""
+    lines = ["| case | mesh | dofs | silicone volume mm³ | dt s | "
+             + " | ".join(f"f {d} Hz | ξ {d}" for d in directions)
+             + " | wall s | s/step | Newton/step | factorizations/step | cutbacks "
+             "| peak MB | kB/dof |",
+             "|---|---|---:|---:|---:|" + "---:|" * (2 * len(directions) + 7)]
+    for name, mesh, dt in cases:
+        r = by_name.get(name)
+        if not r:
+            lines.append(f"| {name} | {mesh} | | | {dt:g} | not run |"
+                         + " |" * (2 * len(directions) + 6))
+            continue
+        lines.append(
+            f"| {name} | {mesh} | {r['dofs']} | {r['volume']:.0f} | {dt:g} | "
+            + " | ".join(f"{cell(r, d, 'f', 5)} | {cell(r, d, 'xi', 5)}"
+                         for d in directions)
+            + f" | {r['wall_seconds']:.1f} | {r['wall_seconds'] / r['steps']:.2f} | "
+            f"{r['newton_iterations'] / r['steps']:.2f} | "
+            f"{r['factorizations_or_amg_setups'] / r['steps']:.2f} | "
+            f"{r['cutbacks']} | {r['peak_memory_mb']:.0f} | "
+            f"{1024. * r['peak_memory_mb'] / r['dofs']:.1f} |")
+    return lines
+
+
+def change_rows(label, silicone, a, b, directions):
+    """One row of a change table: the changes of f and ξ of run a relative
+    to run b in every direction."""
+    return (f"| {label} | {SILICONES[silicone]} | " + " | ".join(
+        f"{change(a, b, d, 'f')} | {change(a, b, d, 'xi')}" for d in directions)
+        + " |")
+
+
 def write_report(path, results, session):
     by_name = {r["name"]: r for r in results
                if r.get("status") == "finished" and r.get("spectrum")}
@@ -109,28 +144,9 @@ def write_report(path, results, session):
               "the threads the line of each run above gives; sessions listed with "
               "the same start load ran at the same time, one on each core."]
     for experiment, (title, _, _, directions) in EXPERIMENTS.items():
-        cases = [c for c in CASES if c[1] == experiment]
-        lines += ["", f"## {title}", "",
-                  "| case | mesh | dofs | silicone volume mm³ | dt s | "
-                  + " | ".join(f"f {d} Hz | ξ {d}" for d in directions)
-                  + " | wall s | s/step | Newton/step | factorizations/step | cutbacks "
-                  "| peak MB | kB/dof |",
-                  "|---|---|---:|---:|---:|" + "---:|" * (2 * len(directions) + 7)]
-        for name, _, silicone, level, dt in cases:
-            r = by_name.get(name)
-            if not r:
-                lines.append(f"| {name} | {level} | | | {dt:g} | not run |"
-                             + " |" * (2 * len(directions) + 6))
-                continue
-            lines.append(
-                f"| {name} | {level} | {r['dofs']} | {r['volume']:.0f} | {dt:g} | "
-                + " | ".join(f"{cell(r, d, 'f', 5)} | {cell(r, d, 'xi', 5)}"
-                             for d in directions)
-                + f" | {r['wall_seconds']:.1f} | {r['wall_seconds'] / r['steps']:.2f} | "
-                f"{r['newton_iterations'] / r['steps']:.2f} | "
-                f"{r['factorizations_or_amg_setups'] / r['steps']:.2f} | "
-                f"{r['cutbacks']} | {r['peak_memory_mb']:.0f} | "
-                f"{1024. * r['peak_memory_mb'] / r['dofs']:.1f} |")
+        lines += ["", f"## {title}", ""]
+        lines += runs_table([(name, level, dt) for name, e, _, level, dt in CASES
+                             if e == experiment], by_name, directions)
         lines += ["", "| change | silicone | " + " | ".join(
                       f"f {d} | ξ {d}" for d in directions) + " |",
                   "|---|---|" + "---:|" * (2 * len(directions))]
@@ -149,9 +165,7 @@ def write_report(path, results, session):
                         pairs.append((f"dt {dt:g}, {coarse} mesh against {fine}",
                                       a, b))
             for label, a, b in pairs:
-                lines.append(f"| {label} | {SILICONES[silicone]} | " + " | ".join(
-                    f"{change(a, b, d, 'f')} | {change(a, b, d, 'xi')}"
-                    for d in directions) + " |")
+                lines.append(change_rows(label, silicone, a, b, directions))
         lines += ["", "A change is that of the first run relative to the second."]
     write_with_discussion_link(path, lines, "reference_discussion.md")
 
