@@ -528,13 +528,19 @@ def local_maximum(frequencies, magnitude, centre, half_width, excluded=None):
     return best
 
 
-def vertical_candidates(run, runs):
+def companion(runs, run, experiment, model):
+    """The run of `experiment` on `model` with run's silicone and parameter
+    set."""
+    return next(r for r in runs if r["experiment"] == experiment
+                and r["model"] == model and r["key"] == run["key"]
+                and r["parameter_set"] == run["parameter_set"])
+
+
+def vertical_candidates(run, axial_run):
     """The bobbing and the axial candidate of a pendulum's vertical motion
-    as ((f, amplitude) or None, (f, amplitude) or None)."""
+    as ((f, amplitude) or None, (f, amplitude) or None); axial_run is the
+    experiment-1 run that locates the axial mode."""
     horizontal = run["spectrum"]["horizontal"]
-    axial_run = next((r for r in runs if r["experiment"] == 1 and r["dim"] == 3
-                      and r["key"] == run["key"]
-                      and r["parameter_set"] == run["parameter_set"]), None)
     frequencies = run["frequencies"]
     magnitude = run["magnitudes"]["vertical"]
     bobbing = None
@@ -544,7 +550,7 @@ def vertical_candidates(run, runs):
         bobbing = local_maximum(frequencies, magnitude, twice, BOBBING_WINDOW)
         excluded = (twice * (1. - BOBBING_WINDOW), twice * (1. + BOBBING_WINDOW))
     axial = None
-    if axial_run and axial_run["spectrum"]["vertical"]["peak"] == "dominant":
+    if axial_run["spectrum"]["vertical"]["peak"] == "dominant":
         axial = local_maximum(frequencies, magnitude,
                               axial_run["spectrum"]["vertical"]["f_peak_Hz"],
                               AXIAL_WINDOW, excluded)
@@ -560,11 +566,9 @@ def candidates_table(runs, experiment):
     for run in runs:
         if run["experiment"] != experiment or run["dim"] != 3:
             continue
-        bobbing, axial = vertical_candidates(run, runs)
+        axial_run = companion(runs, run, 1, "3D quarter model")
+        bobbing, axial = vertical_candidates(run, axial_run)
         horizontal = run["spectrum"]["horizontal"]
-        axial_run = next(r for r in runs if r["experiment"] == 1
-                         and r["dim"] == 3 and r["key"] == run["key"]
-                         and r["parameter_set"] == run["parameter_set"])
         larger = DASH
         if bobbing and axial:
             larger = "bobbing" if bobbing[1] > axial[1] else "axial"
@@ -604,9 +608,7 @@ def reduced_models_table(runs):
         for run in runs:
             if run["experiment"] != experiment or run["model"] != reduced_model:
                 continue
-            full = next(r for r in runs if r["experiment"] == experiment
-                        and r["model"] == full_model and r["key"] == run["key"]
-                        and r["parameter_set"] == run["parameter_set"])
+            full = companion(runs, run, experiment, full_model)
             a, b = run["spectrum"][direction], full["spectrum"][direction]
             both = a["peak"] == "dominant" and b["peak"] == "dominant"
             rows.append([str(experiment), run["silicone"], run["parameter_set"],
