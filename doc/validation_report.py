@@ -499,8 +499,9 @@ def prediction_table(runs, experiment):
 #
 # A pendulum that stretches bobs at twice its swing frequency, and its
 # release also rings the axial mode of experiment 1. Either can dominate
-# the vertical spectrum, depending on how strongly the push excites the
-# axial mode. Each candidate is the largest local maximum of the vertical
+# the vertical spectrum, depending on the protocol (the push's size and
+# the out-of-plane speed; doc/validation_discussion.md, "Protocol
+# study"). Each candidate is the largest local maximum of the vertical
 # amplitude spectrum in a window around where it is expected: the bobbing
 # within 10 % of twice the dominant horizontal frequency, the axial mode
 # within 15 % of the frequency of experiment 1 on the same silicone and
