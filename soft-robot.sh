@@ -11,7 +11,8 @@
 #                              doxygen warning), run the whole test suite
 #   ./soft-robot.sh validate   build in Release, run all thirty bellows scenes
 #                              (SOFT_ROBOT_JOBS at a time, default 2) and
-#                              write doc/validation.md
+#                              write doc/validation.md; with --resume, keep
+#                              the scenes already run from the same inputs
 #   ./soft-robot.sh benchmark  build in Release, run the speed benchmark (and
 #                              CalculiX as the peer) one case at a time and
 #                              write doc/performance.md
@@ -135,11 +136,39 @@ case "${1:-}" in
     packages+=(python3-matplotlib python3-numpy)
     install_missing_packages
     build Release build-release -DSOFT_ROBOT_BUILD_TESTS=OFF
-    # One scene: its output, the program's log and the wall time in
-    # output/<scene>/. A failed scene stops the report.
+    case ${2:-} in
+      '') export SOFT_ROBOT_RESUME=0 ;;
+      --resume) export SOFT_ROBOT_RESUME=1 ;;
+      *) echo "validate: unknown option '$2' (allowed: --resume)" >&2; exit 2 ;;
+    esac
+    # What a scene's result depends on: the committed trees of the
+    # program's sources, parameters and meshes. Uncommitted changes there
+    # give "modified", which no later run counts as the same inputs.
+    inputs=(source include parameters meshes CMakeLists.txt)
+    if [ -n "$(git status --porcelain -- "${inputs[@]}" 2>/dev/null)" ]; then
+      SOFT_ROBOT_INPUTS=modified
+    else
+      SOFT_ROBOT_INPUTS=$(for path in "${inputs[@]}"; do git rev-parse "HEAD:$path"; done |
+                          sha1sum | cut -c1-12)
+    fi
+    SOFT_ROBOT_COMMIT=$(git rev-parse --short HEAD 2>/dev/null || echo unknown)
+    SOFT_ROBOT_SET=$(date +%s)
+    export SOFT_ROBOT_INPUTS SOFT_ROBOT_COMMIT SOFT_ROBOT_SET
+    # One scene: its output, the program's log, the wall time and what it
+    # ran from (run_info: commit, inputs, threads, jobs, the invocation of
+    # validate) in output/<scene>/. A failed scene stops the report. With
+    # --resume, a scene whose run_info names the same inputs is kept.
     run_scene() {
       local scene=$1 name
       name=$(basename "$scene" .prm)
+      if [ "$SOFT_ROBOT_RESUME" = 1 ] && [ "$SOFT_ROBOT_INPUTS" != modified ] &&
+         [ -f "output/$name/wall_seconds" ] &&
+         grep -qx "inputs $SOFT_ROBOT_INPUTS" "output/$name/run_info" 2>/dev/null; then
+        echo "$name: kept ($(cat "output/$name/wall_seconds") s, same inputs)"
+        return 0
+      fi
+      # A result that is not complete must not look complete.
+      rm -f "output/$name/wall_seconds" "output/$name/wall_interval" "output/$name/run_info"
       mkdir -p "output/$name"
       local start milliseconds
       start=$(date +%s%N)
@@ -151,11 +180,15 @@ case "${1:-}" in
       local end
       end=$(date +%s%N)
       milliseconds=$(((end - start) / 1000000))
-      printf '%d.%03d\n' $((milliseconds / 1000)) $((milliseconds % 1000)) \
-        > "output/$name/wall_seconds"
+      printf 'commit %s\ninputs %s\nthreads %s\njobs %s\nset %s\n' "$SOFT_ROBOT_COMMIT" \
+        "$SOFT_ROBOT_INPUTS" "$DEAL_II_NUM_THREADS" "$SOFT_ROBOT_JOBS" "$SOFT_ROBOT_SET" \
+        > "output/$name/run_info"
       # start and end, for the wall time of the whole set
       printf '%d.%09d %d.%09d\n' $((start / 1000000000)) $((start % 1000000000)) \
         $((end / 1000000000)) $((end % 1000000000)) > "output/$name/wall_interval"
+      # written last: its presence marks a complete result
+      printf '%d.%03d\n' $((milliseconds / 1000)) $((milliseconds % 1000)) \
+        > "output/$name/wall_seconds"
       echo "$name: $(cat "output/$name/wall_seconds") s"
     }
     export -f run_scene
