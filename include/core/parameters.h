@@ -313,6 +313,7 @@ namespace SoftRobot
       double        rebuild_threshold;
       unsigned int  acceleration_depth;
       bool          tangent_extrapolation;
+      bool          rotated_tangent;
       bool          line_search;
       unsigned int  max_line_search_steps;
       bool          verbose;

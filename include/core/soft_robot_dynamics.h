@@ -82,6 +82,7 @@
 #include <solvers/linear_solver.h>
 #include <solvers/newton_solver.h>
 #include <solvers/rank_one_correction.h>
+#include <solvers/rotated_tangent.h>
 #include <solvers/time_step_controller.h>
 #include <time_integration/hht_stepper.h>
 #include <vector>
@@ -375,6 +376,10 @@ namespace SoftRobot
     LinearSolver linear_solver;
     // The gas cavity's rank-one term of the matrix prepared last.
     RankOneCorrection rank_one;
+    // The kept matrix rotated with the body (Rotated tangent), and whether
+    // the solves of the running Newton iteration use it.
+    std::unique_ptr<RotatedTangent<dim>> rotated_tangent;
+    bool                                 rotate_kept_tangent = false;
 
     // @sect4{The state of the motion}
     //

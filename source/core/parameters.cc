@@ -944,6 +944,17 @@ namespace SoftRobot
         "alone. It is closer to the stiffness at the end of the step, and "
         "the iterations converge faster; the converged answer is the same "
         "to the tolerance.");
+      prm.declare_entry(
+        "Rotated tangent",
+        "false",
+        Patterns::Bool(),
+        "With 'Tangent update = every step' or 'when needed' (serial runs, "
+        "dim > 1): solve with the old matrix rotated with the body, node by "
+        "node, by the rotation from the state the matrix was built at to "
+        "the current iterate (see include/solvers/rotated_tangent.h). A "
+        "nearly incompressible body that turns converges with the old "
+        "matrix for longer; the converged answer is the same to the "
+        "tolerance.");
       prm.declare_entry("Line search",
                         "true",
                         Patterns::Bool(),
@@ -979,6 +990,7 @@ namespace SoftRobot
       rebuild_threshold     = prm.get_double("Rebuild threshold");
       acceleration_depth    = prm.get_integer("Acceleration depth");
       tangent_extrapolation = prm.get_bool("Tangent extrapolation");
+      rotated_tangent       = prm.get_bool("Rotated tangent");
       line_search           = prm.get_bool("Line search");
       max_line_search_steps = prm.get_integer("Max line search steps");
       verbose               = prm.get_bool("Verbose");

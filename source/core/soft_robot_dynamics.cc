@@ -330,6 +330,15 @@ namespace SoftRobot
                    constraints,
                    mpi_communicator);
     traction.reinit(*mapping, dof_handler, *face_quadrature);
+    rotated_tangent.reset();
+    if (parameters.rotated_tangent && dim > 1)
+      {
+        if (Utilities::MPI::n_mpi_processes(mpi_communicator) == 1)
+          rotated_tangent =
+            std::make_unique<RotatedTangent<dim>>(*mapping, dof_handler);
+        else
+          pcout << "Rotated tangent: off (serial runs only)" << std::endl;
+      }
     if (parameters.has_pressure())
       {
         pneumatics = std::make_unique<PneumaticLoad<dim>>(parameters,

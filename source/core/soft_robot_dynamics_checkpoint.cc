@@ -156,6 +156,11 @@ namespace SoftRobot
             data.vectors["kept rank-one vector"] =
               Checkpoint::local_values(rank_one.vector());
           }
+        // The state the kept matrix was built at, from which the rotated
+        // tangent turns it.
+        if (rotated_tangent && rotated_tangent->get_matrix_state().size() > 0)
+          data.vectors["kept matrix state"] =
+            Checkpoint::local_values(rotated_tangent->get_matrix_state());
       }
 
     Checkpoint::write(Checkpoint::directory_of(parameters.output_directory),
@@ -264,6 +269,14 @@ namespace SoftRobot
           }
         else
           rank_one.clear();
+        if (rotated_tangent && data.vectors.count("kept matrix state") > 0)
+          {
+            TrilinosWrappers::MPI::Vector state(locally_owned_dofs,
+                                                mpi_communicator);
+            Checkpoint::set_local_values(data.vectors.at("kept matrix state"),
+                                         state);
+            rotated_tangent->set_matrix_state(state);
+          }
         prepare_linear_solver();
         linear_solver.set_n_preparations(data.factorizations);
         counters.linear_iterations       = data.linear_iterations;

@@ -297,8 +297,15 @@ namespace SoftRobot
     problem.prepare_tangent = [this]() { prepare_linear_solver(); };
     problem.solve           = [this](const TrilinosWrappers::MPI::Vector &rhs,
                            TrilinosWrappers::MPI::Vector       &solution) {
+      const auto solve_with_matrix =
+        [this](const TrilinosWrappers::MPI::Vector &b,
+               TrilinosWrappers::MPI::Vector       &x) {
+          return rank_one.solve(linear_solver, b, x);
+        };
       const unsigned int iterations =
-        rank_one.solve(linear_solver, rhs, solution);
+        (rotate_kept_tangent && rotated_tangent)
+                    ? rotated_tangent->solve(rhs, solution, solve_with_matrix)
+                    : solve_with_matrix(rhs, solution);
       constraints.set_zero(solution);
       counters.linear_iterations += iterations;
       return iterations;
@@ -325,6 +332,7 @@ namespace SoftRobot
   void
   SoftRobotDynamics<dim>::solve_static_equilibrium(const double time)
   {
+    rotate_kept_tangent = false;
     TrilinosWrappers::MPI::Vector traction_force(locally_owned_dofs,
                                                  mpi_communicator);
     assemble_external_force(time, 1., traction_force);
@@ -614,6 +622,12 @@ namespace SoftRobot
                       damped ? &current.damping_force : nullptr);
     if (with_matrix)
       system_matrix_is_state_stiffness = false;
+    if (rotated_tangent)
+      {
+        rotated_tangent->set_iterate(u_trial);
+        if (with_matrix)
+          rotated_tangent->set_matrix_state(u_trial);
+      }
     if (damped)
       add_global_damping_forces(current.v, current.damping_force);
     else
@@ -732,6 +746,8 @@ namespace SoftRobot
       system_matrix.add(w * c_v, inertia.mass_damping);
     system_matrix.add(stepper.acceleration_coefficient(dt), inertia.mass);
     system_matrix_is_state_stiffness = false;
+    if (rotated_tangent)
+      rotated_tangent->set_matrix_state(previous.u);
     // The gas's rank-one term of the state $\mathbf u_n$, like the
     // stiffness.
     if (pneumatics && pneumatics->rank_one_in_matrix())
@@ -764,6 +780,10 @@ namespace SoftRobot
       prepare_step_tangent(dt);
     kept_matrix_dt = 0.;
 
+    // An extrapolated stiffness already looks ahead; only a matrix of an
+    // earlier state is rotated.
+    rotate_kept_tangent =
+      modified && (keep || !parameters.tangent_extrapolation);
     const NewtonSolver::Result result = newton_solver.solve(
       current.u,
       newton_problem([&](const TrilinosWrappers::MPI::Vector &u,
@@ -775,6 +795,7 @@ namespace SoftRobot
                             previous.pressure_force.l2_norm())
                  : current.external_force.l2_norm(),
       modified);
+    rotate_kept_tangent = false;
     // The matrix the iterations ended with (the one prepared before the
     // step, or the one they rebuilt) serves the next step of this size.
     if (keep)
