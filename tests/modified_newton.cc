@@ -418,5 +418,8 @@ TYPED_TEST(RotatedTangentTest, RigidRotationIsFoundAtEveryNode)
                                 expected[d]));
         }
     }
+  std::cout << dim << "D: largest node rotation " << rotation.largest_angle()
+            << " rad (Q: " << angle << " rad); largest error of Q^T rhs "
+            << error << ", of x - rhs " << largest << std::endl;
   EXPECT_LT(error, 1e-12);
 }
