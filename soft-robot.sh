@@ -49,6 +49,9 @@
 #                              experiments 2 and 3 on the hexahedral mesh: the
 #                              scenes' default against finer meshes, the
 #                              three silicones; writes doc/reference_swing_hex.md
+#   ./soft-robot.sh protocol   build in Release, run the calibrated Dragon Skin
+#                              20 pendulums under other pushes and out-of-plane
+#                              starts and write doc/protocol.md
 #
 # Build directories: build-release/ and build-debug/ beside this script.
 set -euo pipefail
@@ -117,7 +120,7 @@ case "${1:-}" in
     build Release build-release -DSOFT_ROBOT_BUILD_TESTS=OFF
     /usr/bin/python3 doc/locking/run_locking.py build-release "${@:2}"
     ;;
-  stability|error-vs-runtime|twisting-column|damping|pneumatics|reference)
+  stability|error-vs-runtime|twisting-column|damping|pneumatics|reference|protocol)
     packages+=(python3-numpy python3-matplotlib)
     install_missing_packages
     build Release build-release -DSOFT_ROBOT_BUILD_TESTS=OFF
@@ -207,7 +210,7 @@ case "${1:-}" in
     echo "Wrote doc/validation.md"
     ;;
   *)
-    echo "Usage: $0 demo|test|validate|benchmark|stability|locking|error-vs-runtime|twisting-column|damping|pneumatics|reference|swing-reference|hex-reference|swing-hex-reference" >&2
+    echo "Usage: $0 demo|test|validate|benchmark|stability|locking|error-vs-runtime|twisting-column|damping|pneumatics|reference|swing-reference|hex-reference|swing-hex-reference|protocol" >&2
     exit 2
     ;;
 esac
