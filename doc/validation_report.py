@@ -847,12 +847,15 @@ def main():
     except (ReportError, OSError) as error:
         sys.exit("validation_report.py: %s" % error)
 
+    # The header first: it names the commit and whether the working tree
+    # differs from it, which the figures written below would change.
+    lines = header(runs, doc_dir)
     figure_dir = doc_dir / "figures" / "validation"
     figure_dir.mkdir(parents=True, exist_ok=True)
     for run in runs:
         plot_scene(run, figure_dir / (run["name"] + ".png"))
 
-    lines = (header(runs, doc_dir) + experiment_1(runs)
+    lines += (experiment_1(runs)
              + prediction_table(runs, 2) + prediction_table(runs, 3)
              + reduced_models_table(runs) + runs_table(runs) + warnings_table(runs)
              + figures_section(runs))
