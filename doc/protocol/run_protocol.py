@@ -195,6 +195,7 @@ def plot_experiment(experiment, results, path):
     figure, axes = plt.subplots(len(directions), 1, figsize=(8, 2.4 * len(directions)),
                                 sharex=True)
     styles = ["--", "-.", ":"]
+    colours = ["#1f4fd8", "#d62020", "#109030", "#9040c0"]
     shown = [(name, protocol) for name, e, _, protocol, _ in CASES
              if e == experiment and results.get(name)
              and results[name]["status"] == "finished"]
@@ -206,7 +207,8 @@ def plot_experiment(experiment, results, path):
             scene = name == SCENE_CASE[experiment]
             axis.semilogy(f[window], np.maximum(r["magnitudes"][direction][window], 1e-6),
                           "-" if scene else styles[k % 3], lw=1.4 if scene else 1.2,
-                          color="k" if scene else f"C{k}", label=protocol)
+                          color="k" if scene else colours[k % len(colours)],
+                          label=protocol)
         if direction == "vertical":
             axis.axvline(AXIAL, color="k", ls=":", lw=0.8,
                          label=f"experiment 1, {AXIAL:.2f} Hz")
