@@ -584,10 +584,10 @@ def companion(runs, run, experiment, model):
                 and r["parameter_set"] == run["parameter_set"])
 
 
-def vertical_candidates(run, axial_run):
+def vertical_candidates(run, axial_frequency):
     """The bobbing and the axial candidate of a pendulum's vertical motion
-    as ((f, amplitude) or None, (f, amplitude) or None); axial_run is the
-    experiment-1 run that locates the axial mode."""
+    as ((f, amplitude) or None, (f, amplitude) or None); axial_frequency
+    (Hz, or None) is where experiment 1 locates the axial mode."""
     horizontal = run["spectrum"]["horizontal"]
     frequencies = run["frequencies"]
     magnitude = run["magnitudes"]["vertical"]
@@ -598,9 +598,8 @@ def vertical_candidates(run, axial_run):
         bobbing = local_maximum(frequencies, magnitude, twice, BOBBING_WINDOW)
         excluded = (twice * (1. - BOBBING_WINDOW), twice * (1. + BOBBING_WINDOW))
     axial = None
-    if axial_run["spectrum"]["vertical"]["peak"] == "dominant":
-        axial = local_maximum(frequencies, magnitude,
-                              axial_run["spectrum"]["vertical"]["f_peak_Hz"],
+    if axial_frequency is not None:
+        axial = local_maximum(frequencies, magnitude, axial_frequency,
                               AXIAL_WINDOW, excluded)
     return bobbing, axial
 
@@ -615,7 +614,10 @@ def candidates_table(runs, experiment):
         if run["experiment"] != experiment or run["dim"] != 3:
             continue
         axial_run = companion(runs, run, 1, "3D quarter model")
-        bobbing, axial = vertical_candidates(run, axial_run)
+        axial_vertical = axial_run["spectrum"]["vertical"]
+        bobbing, axial = vertical_candidates(
+            run, axial_vertical["f_peak_Hz"]
+            if axial_vertical["peak"] == "dominant" else None)
         horizontal = run["spectrum"]["horizontal"]
         larger = DASH
         if bobbing and axial:

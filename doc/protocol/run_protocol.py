@@ -37,9 +37,9 @@ from run_reference import read_statistics  # noqa: E402
 from run_stability import run_program  # noqa: E402
 from study_session import REPOSITORY, run_lines, study_main  # noqa: E402
 from validation_report import (AXIAL_WINDOW, BOBBING_WINDOW,  # noqa: E402
-                               DIRECTIONS, MEASURED, local_maximum, plt,
-                               read_magnitudes, read_spectrum_table,
-                               save_small_png)
+                               DIRECTIONS, MEASURED, plt, read_magnitudes,
+                               read_spectrum_table, save_small_png,
+                               vertical_candidates)
 
 PUSH = 1.08824  # kPa on the cylindrical block's face: the scenes' 958.4 mN
 ROTATION = ("-v_tip * z / 109.5; 0; v_tip * (x + 15.25) / 109.5")
@@ -122,19 +122,6 @@ def modal(entry):
     return f"{entry['f_peak_Hz']:.3f} Hz, ξ {entry['xi_fit']:.5f}"
 
 
-def candidates(result):
-    horizontal = result["spectrum"]["horizontal"]
-    frequencies = result["frequencies"]
-    vertical = result["magnitudes"]["vertical"]
-    bobbing, excluded = None, None
-    if horizontal["peak"] == "dominant":
-        twice = 2. * horizontal["f_peak_Hz"]
-        bobbing = local_maximum(frequencies, vertical, twice, BOBBING_WINDOW)
-        excluded = (twice * (1. - BOBBING_WINDOW), twice * (1. + BOBBING_WINDOW))
-    axial = local_maximum(frequencies, vertical, AXIAL, AXIAL_WINDOW, excluded)
-    return bobbing, axial
-
-
 def peak(candidate):
     return "no maximum" if candidate is None else \
         f"{candidate[0]:.3f} Hz ({candidate[1]:.3f} mm)"
@@ -155,7 +142,7 @@ def experiment_table(experiment, results):
             lines.append(f"| {name} | {protocol} | {result['status']}: "
                          f"{result.get('message', '')} |")
             continue
-        bobbing, axial = candidates(result)
+        bobbing, axial = vertical_candidates(result, AXIAL)
         larger = "—"
         if bobbing and axial:
             larger = "bobbing" if bobbing[1] > axial[1] else "axial"
