@@ -11,11 +11,12 @@
 // \mapsto \mathbf Q\,\mathbb A(\mathbf Q^T\delta\mathbf F)$, so the
 // stiffness matrix becomes $\mathbf R\mathbf K\mathbf R^T$, where
 // $\mathbf R$ applies $\mathbf Q$ to the displacement vector of every
-// node. For a nearly incompressible body the mismatch of the unrotated
-// matrix is of the order of the bulk modulus times the angle turned, which
-// can exceed the shear stiffness after a few degrees; with the rotation
-// the mismatch is what the rotation does not explain (stretch, and the
-// change of the rotation along the body).
+// node. Our estimate, not checked by runs at other ratios of bulk to
+// shear modulus: for a nearly incompressible body the mismatch of the
+// unrotated matrix is of the order of the bulk modulus times the angle
+// turned, which can exceed the shear stiffness after a few degrees; with
+// the rotation the mismatch is what the rotation does not explain
+// (stretch, and the change of the rotation along the body).
 //
 // This class turns the solve with the kept matrix into
 // $\mathbf x = \mathbf R\,\mathbf K_0^{-1}\mathbf R^T\mathbf r$, with a
