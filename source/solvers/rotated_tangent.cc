@@ -1,5 +1,7 @@
 // SPDX-License-Identifier: LGPL-2.1-or-later
 
+// @sect3{Implementation of the RotatedTangent class}
+
 #include <cmath>
 #include <deal.II/base/exceptions.h>
 #include <deal.II/base/quadrature_lib.h>
