@@ -145,7 +145,7 @@ namespace SoftRobot
     if (lagged_matrix)
       damping_matrix.vmult_add(force, v);
     if (Inertia<dim>::has_mass_damping(parameters))
-      inertia.mass_damping.vmult_add(force, v);
+      inertia.mass_damping_for_products().vmult_add(force, v);
   }
 
 
@@ -447,10 +447,10 @@ namespace SoftRobot
     SolverControl control(1000, 1e-12 * std::max(rhs.l2_norm(), 1e-300));
     SolverCG<TrilinosWrappers::MPI::Vector> solver(control);
     TrilinosWrappers::PreconditionJacobi    jacobi;
-    jacobi.initialize(inertia.mass);
+    jacobi.initialize(inertia.mass_for_products());
     current.a = 0.;
     if (rhs.l2_norm() > 0)
-      solver.solve(inertia.mass, current.a, rhs, jacobi);
+      solver.solve(inertia.mass_for_products(), current.a, rhs, jacobi);
     constraints.set_zero(current.a);
   }
 
@@ -494,9 +494,10 @@ namespace SoftRobot
     assemble_external_force(0., 1., current.external_force);
     compute_initial_acceleration();
 
-    energy.kinetic           = 0.5 * inertia.mass.matrix_norm_square(current.v);
-    energy.gravity_potential = -(inertia.gravity_force * current.u);
-    energy.traction_work     = 0.;
+    energy.kinetic =
+      0.5 * inertia.mass_for_products().matrix_norm_square(current.v);
+    energy.gravity_potential   = -(inertia.gravity_force * current.u);
+    energy.traction_work       = 0.;
     energy.damping_dissipation = 0.;
     energy.pressure_work       = 0.;
     // The forces of the equation at t = 0, the first terms of the work and
@@ -634,7 +635,7 @@ namespace SoftRobot
       current.damping_force = 0.;
 
     const double w = stepper.new_force_weight();
-    inertia.mass.vmult(residual, current.a);
+    inertia.mass_for_products().vmult(residual, current.a);
     assembly.force_scale =
       std::max(residual.l2_norm(), current.internal_force.l2_norm());
     residual.add(w, current.internal_force, w, current.damping_force);
@@ -864,7 +865,8 @@ namespace SoftRobot
         hht_pressure_force = pressure_force;
       }
 
-    energy.kinetic           = 0.5 * inertia.mass.matrix_norm_square(current.v);
+    energy.kinetic =
+      0.5 * inertia.mass_for_products().matrix_norm_square(current.v);
     energy.strain            = assembly.strain_energy;
     energy.gravity_potential = -(inertia.gravity_force * current.u);
     energy.traction_work +=

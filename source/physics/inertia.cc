@@ -4,8 +4,12 @@
 //
 // See include/physics/inertia.h.
 
+#include <Epetra_CrsMatrix.h>
+#include <Epetra_Map.h>
 #include <core/config.h>
+#include <deal.II/base/mpi.h>
 #include <deal.II/fe/fe_values.h>
+#include <deal.II/lac/trilinos_sparsity_pattern.h>
 #include <physics/inertia.h>
 
 namespace SoftRobot
@@ -147,9 +151,70 @@ namespace SoftRobot
             }
         }
     mass.compress(VectorOperation::add);
+    copy_nonzero_entries(mass, compact_mass);
     if (mass_damped)
-      mass_damping.compress(VectorOperation::add);
+      {
+        mass_damping.compress(VectorOperation::add);
+        copy_nonzero_entries(mass_damping, compact_mass_damping);
+      }
     gravity_force.compress(VectorOperation::add);
+  }
+
+
+
+  // @sect4{Inertia::copy_nonzero_entries}
+  //
+  // Row by row from the Epetra matrix's own arrays (a row's columns are
+  // local indices of its column map): first the pattern of the locally
+  // owned rows' nonzero entries, then their values. The rows keep the
+  // partition of `full`; the columns are those of the entries, owned or
+  // not.
+  template <int dim>
+  void
+  Inertia<dim>::copy_nonzero_entries(const TrilinosWrappers::SparseMatrix &full,
+                                     TrilinosWrappers::SparseMatrix &compact)
+  {
+    const Epetra_CrsMatrix &matrix       = full.trilinos_matrix();
+    const MPI_Comm          communicator = full.get_mpi_communicator();
+    std::vector<std::vector<types::global_dof_index>> columns(
+      matrix.NumMyRows());
+    std::vector<std::vector<double>> values(matrix.NumMyRows());
+    std::size_t                      zeros = 0;
+    for (int row = 0; row < matrix.NumMyRows(); ++row)
+      {
+        int     n_entries;
+        double *row_values;
+        int    *row_columns;
+        matrix.ExtractMyRowView(row, n_entries, row_values, row_columns);
+        for (int k = 0; k < n_entries; ++k)
+          if (row_values[k] != 0.)
+            {
+              columns[row].push_back(matrix.ColMap().GID64(row_columns[k]));
+              values[row].push_back(row_values[k]);
+            }
+          else
+            ++zeros;
+      }
+    if (Utilities::MPI::sum(zeros, communicator) == 0)
+      {
+        compact.clear();
+        return;
+      }
+
+    TrilinosWrappers::SparsityPattern pattern(
+      full.locally_owned_range_indices(), communicator);
+    for (int row = 0; row < matrix.NumMyRows(); ++row)
+      pattern.add_entries(matrix.RowMap().GID64(row),
+                          columns[row].begin(),
+                          columns[row].end());
+    pattern.compress();
+    compact.reinit(pattern);
+    for (int row = 0; row < matrix.NumMyRows(); ++row)
+      compact.set(matrix.RowMap().GID64(row),
+                  columns[row].size(),
+                  columns[row].data(),
+                  values[row].data());
+    compact.compress(VectorOperation::insert);
   }
 
 
