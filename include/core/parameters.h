@@ -269,6 +269,7 @@ namespace SoftRobot
       std::string         velocity_expression;
       VelocityCoordinates velocity_coordinates;
       unsigned int        load_steps;
+      double              load_step_tolerance;
 
       static void
       declare_parameters(ParameterHandler &prm);

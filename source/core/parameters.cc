@@ -776,6 +776,15 @@ namespace SoftRobot
                         Patterns::Integer(1, 1000),
                         "Number of equal increments in which the loads are "
                         "applied for the static equilibrium.");
+      prm.declare_entry(
+        "Load step tolerance",
+        "0.1",
+        Patterns::Double(1e-12, 1.),
+        "Relative tolerance of Newton's method in the load steps of the "
+        "static equilibrium before the last one (times the same force "
+        "scale as Nonlinear solver/Relative tolerance, and never below it). "
+        "These steps only lead to the equilibrium: the last one converges "
+        "to the Nonlinear solver's tolerances from wherever they end.");
       prm.leave_subsection();
     }
 
@@ -792,7 +801,8 @@ namespace SoftRobot
         (prm.get("Velocity coordinates") == "initial state")
           ? VelocityCoordinates::initial_state
           : VelocityCoordinates::reference;
-      load_steps = prm.get_integer("Load steps");
+      load_steps          = prm.get_integer("Load steps");
+      load_step_tolerance = prm.get_double("Load step tolerance");
       prm.leave_subsection();
     }
 
