@@ -779,12 +779,13 @@ namespace SoftRobot
       prm.declare_entry(
         "Load step tolerance",
         "0.1",
-        Patterns::Double(1e-12, 1.),
+        Patterns::Double(0., 1.),
         "Relative tolerance of Newton's method in the load steps of the "
         "static equilibrium before the last one (times the same force "
-        "scale as Nonlinear solver/Relative tolerance, and never below it). "
-        "These steps only lead to the equilibrium: the last one converges "
-        "to the Nonlinear solver's tolerances from wherever they end.");
+        "scale as Nonlinear solver/Relative tolerance, and never below it; "
+        "0 converges every step to that tolerance). These steps only lead "
+        "to the equilibrium: the last one converges to the Nonlinear "
+        "solver's tolerances from wherever they end.");
       prm.leave_subsection();
     }
 
