@@ -15,8 +15,8 @@ from `tip_spectrum.csv` and the wall time it measured itself, and prints
 one table. Cases marked "window" run only the first part of the motion
 (their cost per step is what they measure; a tip frequency needs the whole
 record). The peer, CalculiX, runs the headline case (linear tetrahedra,
-C3D4), the quadratic one (p2md_headline_kept, C3D10) and the hexahedral
-one (hex_headline_kept, C3D20) through calculix_peer.py in the same
+C3D4), the quadratic one (p2md_headline_kept, C3D10) and the scenes'
+default (default_vertical, C3D20) through calculix_peer.py in the same
 session, each if its case ran.
 
 Nothing here is a test: the numbers depend on the machine, and they are
@@ -85,6 +85,31 @@ HEX_OVERRIDES = ["Geometry/Mesh source=bellows",
                  "Finite element/Volumetric formulation=linear dilatation"]
 HEX_HOLD_TRACTION = 1.08824
 HEX = HEX_OVERRIDES + [f"Loads and constraints/Function constants=hold={HEX_HOLD_TRACTION:g}"]
+
+# The hexahedral meshes, named hex-T-F-C-Q by their cells through the wall,
+# along a flank, per chord of a fold and per quarter turn (Geometry/Bellows):
+# their overrides of the scenes' hex-1-3-1-2 and what they are. Also used by
+# doc/reference/run_hex_reference.py.
+HEX_MESHES = {
+    "hex-1-3-1-2": ([], "the scenes' default"),
+    "hex-1-2-1-2": (["Geometry/Bellows/Cells along a flank=2"], "fewer cells on the flanks"),
+    "hex-2-3-1-2": (["Geometry/Bellows/Cells through the wall=2"], "two cells through the wall"),
+    "hex-2-6-1-2": (["Geometry/Bellows/Cells through the wall=2",
+                     "Geometry/Bellows/Cells along a flank=6"], "and six on a flank"),
+    "hex-2-6-2-2": (["Geometry/Bellows/Cells through the wall=2",
+                     "Geometry/Bellows/Cells along a flank=6",
+                     "Geometry/Bellows/Cells per chord=2"], "and two per chord"),
+    "hex-2-6-1-4": (["Geometry/Bellows/Cells through the wall=2",
+                     "Geometry/Bellows/Cells along a flank=6",
+                     "Geometry/Bellows/Cells per quarter turn=4"], "and four per quarter turn"),
+    "hex-1-3-1-2-refined": (["Geometry/Global refinements=1"],
+                            "the default refined once"),
+}
+
+# The refinement series of the scenes' default discretisation (cases
+# default_<mesh>_window): the default mesh, the provisional reference of
+# experiment 2 and the reference mesh of experiment 1.
+DEFAULT_SERIES = ("hex-1-3-1-2", "hex-2-6-2-2", "hex-1-3-1-2-refined")
 
 # The refinement series of the quadratic discretisation (P2MD + KEPT): the
 # quarter model's coarse, medium and fine meshes (11,931 to about 55,000
@@ -169,9 +194,24 @@ CASES = [
 ] + [
     ("headline_kept", HEADLINE, KEPT, 1,
      "the headline, matrix kept across steps, Newton tolerance 1e-6"),
-    ("hex_headline_kept", HEADLINE, HEX + KEPT, 1,
-     "exp. 1 DS20 quarter, hexahedral mesh hex-1-3-1-2, quadratic hexahedra with "
-     "linear dilatation, matrix kept across steps, Newton tolerance 1e-6, 5.25 s"),
+    # The scenes as they are (cases default_*: the tetrahedral defaults are
+    # not restored): quadratic hexahedra with the linear dilatation, the
+    # matrix kept across steps, Newton tolerance 1e-6 of the force scale.
+    ("default_vertical", HEADLINE, [], 1,
+     "exp. 1 DS20 quarter on the scenes' default (hex-1-3-1-2, quadratic "
+     "hexahedra with linear dilatation), 5.25 s"),
+    ("default_planar", "parameters/bellows/planar_ds20_3d.prm", [], 1,
+     "exp. 2 DS20 half model on the scenes' default, 6 s"),
+    ("default_spherical", "parameters/bellows/spherical_ds20_3d.prm", [], 1,
+     "exp. 3 DS20 full model on the scenes' default, 6 s"),
+] + [
+    (f"default_{mesh}_window", HEADLINE,
+     HEX_MESHES[mesh][0] + ["Time integration/End time=0.25",
+                            "Output/Spectral analysis=false"], 1,
+     f"exp. 1 DS20 quarter on the scenes' default with mesh {mesh} "
+     f"({HEX_MESHES[mesh][1]}), first 0.25 s")
+    for mesh in DEFAULT_SERIES
+] + [
     ("planar_3d", "parameters/bellows/planar_ds20_3d.prm", [], 1,
      "exp. 2 DS20 half model, 6 s (reference: 5,000 s)"),
     ("spherical_3d", "parameters/bellows/spherical_ds20_3d.prm", [], 1,
@@ -182,7 +222,9 @@ CASES = [
      "reduced 2D strip, 6 s"),
 ]
 
-REFERENCE_SECONDS = {"headline": 1800., "planar_3d": 5000., "spherical_3d": 2200.}
+REFERENCE_SECONDS = {"headline": 1800., "planar_3d": 5000., "spherical_3d": 2200.,
+                     "default_vertical": 1800., "default_planar": 5000.,
+                     "default_spherical": 2200.}
 
 
 def tip_frequency(output):
@@ -304,7 +346,8 @@ def run_case_once(build, output_root, case, reuse=False, label=""):
     ensure_mesh(overrides)
     command = [str(build / "soft-robot"), scene,
                "--set", f"Problem/Output directory={output}"]
-    for entry in tetrahedral_defaults(scene) + QUIET + overrides:
+    restored = [] if name.startswith("default_") else tetrahedral_defaults(scene)
+    for entry in restored + QUIET + overrides:
         command += ["--set", entry]
     if processes > 1:
         command = ["mpirun", "-np", str(processes)] + command
@@ -336,7 +379,7 @@ def run_case_once(build, output_root, case, reuse=False, label=""):
 # of its output (under the benchmark's output).
 PEERS = (("headline", ["--degree", "1"], "calculix_peer"),
          ("p2md_headline_kept", ["--degree", "2"], "calculix_peer_c3d10"),
-         ("hex_headline_kept", ["--hex"], "calculix_peer_c3d20"))
+         ("default_vertical", ["--hex"], "calculix_peer_c3d20"))
 
 
 def run_calculix(output_root, cases):
@@ -407,6 +450,66 @@ def per_iteration(s):
 
 def section(statistics, *names):
     return sum(statistics["sections"].get(name, 0.) for name in names)
+
+
+def cost_series_table(lines, series, title, what):
+    """A refinement series' cost per time step: a table with the growth
+    exponent from mesh to mesh, then the growth from the first mesh to the
+    last, taken apart; nothing if the series has fewer than two meshes."""
+    if len(series) < 2:
+        return
+    lines.append(f"## {title}\n")
+    lines.append(what + " Per time step: "
+                 "the time of the assemblies, the solver set-ups and the solves "
+                 "divided by the steps, and the exponent p of t ~ N^p from the "
+                 "mesh before; the Newton iterations and the factorizations per "
+                 "step, the linear solves per Newton iteration (one back "
+                 "substitution each with the direct solver), the direct solver "
+                 "that `automatic` chose, and the peak memory per unknown.\n")
+    lines.append("| mesh | dofs | ms per step | exponent | assembly ms | set-up ms | "
+                 "solve ms | Newton/step | factorizations/step | solves per Newton "
+                 "iteration | solver | peak MB | kB per dof |")
+    lines.append("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|---:|---:|")
+
+    def step_ms(r):
+        return 1000 * section(r, "Assemble residual", "Assemble system",
+                              "Assemble tractions", "Factorization",
+                              "Preconditioner setup", "Linear solve") / max(r["steps"], 1)
+
+    previous = None
+    for level, r in series:
+        steps = max(r["steps"], 1)
+        per_step = step_ms(r)
+        exponent = ("–" if previous is None else
+                    f"{math.log(per_step / previous[1]) / math.log(r['dofs'] / previous[0]):.2f}")
+        lines.append(
+            f"| {level} | {r['dofs']} | {per_step:.1f} | {exponent} "
+            f"| {1000 * section(r, 'Assemble residual', 'Assemble system', 'Assemble tractions') / steps:.1f} "
+            f"| {1000 * section(r, 'Factorization', 'Preconditioner setup') / steps:.1f} "
+            f"| {1000 * section(r, 'Linear solve') / steps:.1f} "
+            f"| {r['newton_iterations'] / steps:.2f} "
+            f"| {r['factorizations_or_amg_setups'] / steps:.2f} "
+            f"| {r['linear_iterations'] / max(r['newton_iterations'], 1):.2f} "
+            f"| {r.get('solver_in_use', '–')} | {r['peak_memory_mb']:.0f} "
+            f"| {1024 * r['peak_memory_mb'] / r['dofs']:.1f} |")
+        previous = (r["dofs"], per_step)
+    (first_level, a), (last_level, b) = series[0], series[-1]
+    log_n = math.log(b["dofs"] / a["dofs"])
+    parts = []
+    for label, names in (("assembly", ("Assemble residual", "Assemble system",
+                                       "Assemble tractions")),
+                         ("factorizations", ("Factorization", "Preconditioner setup")),
+                         ("solves", ("Linear solve",))):
+        ta, tb = section(a, *names) / a["steps"], section(b, *names) / b["steps"]
+        if ta > 0 and tb > 0:
+            parts.append(f"{label} N^{math.log(tb / ta) / log_n:.2f}")
+    lines.append(
+        f"\nFrom the {first_level} to the {last_level} mesh the cost per step grows "
+        f"like N^{math.log(step_ms(b) / step_ms(a)) / log_n:.2f}; by part: "
+        + ", ".join(parts) + ". The peak memory beyond the first mesh's grows by "
+        f"{1024 * (b['peak_memory_mb'] - a['peak_memory_mb']) / (b['dofs'] - a['dofs']):.1f} "
+        "kB per added unknown (the per-unknown column above includes the libraries "
+        "and the process's fixed memory).\n")
 
 
 def write_report(path, results, calculix, run):
@@ -516,64 +619,22 @@ def write_report(path, results, calculix, run):
 
     p2md_series = [(level, by_name[f"p2md_quarter_{level}_window"])
                    for level in P2MD_SERIES_LEVELS if f"p2md_quarter_{level}_window" in by_name]
-    if len(p2md_series) >= 2:
-        lines.append("## Cost per time step over the quadratic refinement series\n")
-        lines.append("Quadratic tetrahedra in the mean-dilatation formulation, the "
-                     "matrix kept across steps (the settings of `p2md_headline_kept`), "
-                     "on the quarter model's coarse, medium and fine gmsh meshes, the "
-                     "first 0.25 s each with the static equilibrium. Per time step: "
-                     "the time of the assemblies, the solver set-ups and the solves "
-                     "divided by the steps, and the exponent p of t ~ N^p from the "
-                     "mesh before; the Newton iterations and the factorizations per "
-                     "step, the linear solves per Newton iteration (one back "
-                     "substitution each with the direct solver), the direct solver "
-                     "that `automatic` chose, and the peak memory per unknown.\n")
-        lines.append("| mesh | dofs | ms per step | exponent | assembly ms | set-up ms | "
-                     "solve ms | Newton/step | factorizations/step | solves per Newton "
-                     "iteration | solver | peak MB | kB per dof |")
-        lines.append("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|---:|---:|")
-        previous = None
-        for level, r in p2md_series:
-            steps = max(r["steps"], 1)
-            work = section(r, "Assemble residual", "Assemble system", "Assemble tractions",
-                           "Factorization", "Preconditioner setup", "Linear solve")
-            per_step = 1000 * work / steps
-            exponent = ("–" if previous is None else
-                        f"{math.log(per_step / previous[1]) / math.log(r['dofs'] / previous[0]):.2f}")
-            lines.append(
-                f"| {level} | {r['dofs']} | {per_step:.1f} | {exponent} "
-                f"| {1000 * section(r, 'Assemble residual', 'Assemble system', 'Assemble tractions') / steps:.1f} "
-                f"| {1000 * section(r, 'Factorization', 'Preconditioner setup') / steps:.1f} "
-                f"| {1000 * section(r, 'Linear solve') / steps:.1f} "
-                f"| {r['newton_iterations'] / steps:.2f} "
-                f"| {r['factorizations_or_amg_setups'] / steps:.2f} "
-                f"| {r['linear_iterations'] / max(r['newton_iterations'], 1):.2f} "
-                f"| {r.get('solver_in_use', '–')} | {r['peak_memory_mb']:.0f} "
-                f"| {1024 * r['peak_memory_mb'] / r['dofs']:.1f} |")
-            previous = (r["dofs"], per_step)
-        (first_level, a), (last_level, b) = p2md_series[0], p2md_series[-1]
-
-        def step_ms(r):
-            return 1000 * section(r, "Assemble residual", "Assemble system",
-                                  "Assemble tractions", "Factorization",
-                                  "Preconditioner setup", "Linear solve") / max(r["steps"], 1)
-
-        log_n = math.log(b["dofs"] / a["dofs"])
-        parts = []
-        for label, names in (("assembly", ("Assemble residual", "Assemble system",
-                                           "Assemble tractions")),
-                             ("factorizations", ("Factorization", "Preconditioner setup")),
-                             ("solves", ("Linear solve",))):
-            ta, tb = section(a, *names) / a["steps"], section(b, *names) / b["steps"]
-            if ta > 0 and tb > 0:
-                parts.append(f"{label} N^{math.log(tb / ta) / log_n:.2f}")
-        lines.append(
-            f"\nFrom the {first_level} to the {last_level} mesh the cost per step grows "
-            f"like N^{math.log(step_ms(b) / step_ms(a)) / log_n:.2f}; by part: "
-            + ", ".join(parts) + ". The peak memory beyond the coarse mesh's grows by "
-            f"{1024 * (b['peak_memory_mb'] - a['peak_memory_mb']) / (b['dofs'] - a['dofs']):.1f} "
-            "kB per added unknown (the per-unknown column above includes the libraries "
-            "and the process's fixed memory).\n")
+    cost_series_table(
+        lines, p2md_series, "Cost per time step over the quadratic refinement series",
+        "Quadratic tetrahedra in the mean-dilatation formulation, the matrix kept "
+        "across steps (the settings of `p2md_headline_kept`), on the quarter model's "
+        "coarse, medium and fine gmsh meshes, the first 0.25 s each with the static "
+        "equilibrium.")
+    default_series = [(mesh, by_name[f"default_{mesh}_window"])
+                      for mesh in DEFAULT_SERIES if f"default_{mesh}_window" in by_name]
+    cost_series_table(
+        lines, default_series,
+        "Cost per time step over the refinement series of the scenes' default",
+        "The scenes' default discretisation (quadratic hexahedra with the linear "
+        "dilatation, the matrix kept across steps; experiment 1 of Dragon Skin 20 as "
+        "`default_vertical`) on three hexahedral meshes of the quarter model "
+        "(`doc/reference_hex.md` names them), the first 0.25 s each with the static "
+        "equilibrium.")
 
     def per_cg_iteration(s):
         """Nanoseconds per unknown per CG iteration (the solves' time)."""

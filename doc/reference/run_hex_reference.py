@@ -32,30 +32,15 @@ from pathlib import Path
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 from run_reference import (SOLVER, load_case, percent,  # noqa: E402
                            read_vertical, run_scene)
-from run_benchmarks import (HEX_HOLD_TRACTION, HEX_OVERRIDES,  # noqa: E402
-                            write_with_discussion_link)
+from run_benchmarks import (HEX_HOLD_TRACTION, HEX_MESHES,  # noqa: E402
+                            HEX_OVERRIDES, write_with_discussion_link)
 from study_session import run_lines, study_main  # noqa: E402
 
 RECORD = 2.5  # s
 HOLD = {"cylinder": f"hold={HEX_HOLD_TRACTION:g}", "box": "hold=1.1397"}
 DEFAULT = "hex-1-3-1-2"
 
-# mesh label: (overrides, what it is)
-MESHES = {
-    "hex-1-3-1-2": ([], "the scenes' default"),
-    "hex-1-2-1-2": (["Geometry/Bellows/Cells along a flank=2"], "fewer cells on the flanks"),
-    "hex-2-3-1-2": (["Geometry/Bellows/Cells through the wall=2"], "two cells through the wall"),
-    "hex-2-6-1-2": (["Geometry/Bellows/Cells through the wall=2",
-                     "Geometry/Bellows/Cells along a flank=6"], "and six on a flank"),
-    "hex-2-6-2-2": (["Geometry/Bellows/Cells through the wall=2",
-                     "Geometry/Bellows/Cells along a flank=6",
-                     "Geometry/Bellows/Cells per chord=2"], "and two per chord"),
-    "hex-2-6-1-4": (["Geometry/Bellows/Cells through the wall=2",
-                     "Geometry/Bellows/Cells along a flank=6",
-                     "Geometry/Bellows/Cells per quarter turn=4"], "and four per quarter turn"),
-    "hex-1-3-1-2-refined": (["Geometry/Global refinements=1"],
-                            "the default refined once"),
-}
+MESHES = HEX_MESHES
 HEXAHEDRA = HEX_OVERRIDES
 DISPLACEMENT = ["Finite element/Volumetric formulation=displacement"]
 MEAN_DILATATION = ["Finite element/Volumetric formulation=mean dilatation"]
