@@ -40,7 +40,6 @@ RECORD = 2.5  # s
 HOLD = {"cylinder": f"hold={HEX_HOLD_TRACTION:g}", "box": "hold=1.1397"}
 DEFAULT = "hex-1-3-1-2"
 
-MESHES = HEX_MESHES
 HEXAHEDRA = HEX_OVERRIDES
 DISPLACEMENT = ["Finite element/Volumetric formulation=displacement"]
 MEAN_DILATATION = ["Finite element/Volumetric formulation=mean dilatation"]
@@ -51,7 +50,7 @@ TETRAHEDRA = ["Geometry/Mesh source=file",
 CASES = ([(f"ds20_{DEFAULT}_dt{dt:g}", "ds20", DEFAULT, dt, [])
           for dt in (0.01, 0.005, 0.0025)] +
          [(f"ds20_{mesh}_dt0.01", "ds20", mesh, 0.01, [])
-          for mesh in MESHES if mesh != DEFAULT] +
+          for mesh in HEX_MESHES if mesh != DEFAULT] +
          [(f"ds20_{mesh}_dt0.005", "ds20", mesh, 0.005, [])
           for mesh in ("hex-2-6-2-2", "hex-1-3-1-2-refined")] +
          [(f"{s}_{mesh}_dt0.01", s, mesh, 0.01, [])
@@ -83,7 +82,7 @@ def overrides(mesh, dt, extra):
         entries = [e.format(level=level) for e in TETRAHEDRA]
         hold = HOLD[shape]
     else:
-        entries = HEXAHEDRA + MESHES[mesh][0]
+        entries = HEXAHEDRA + HEX_MESHES[mesh][0]
         hold = HOLD["cylinder"]
     return (SOLVER + entries + extra +
             [f"Loads and constraints/Function constants={hold}",

@@ -384,10 +384,8 @@ namespace SoftRobot
 
     // The load steps before the last stop at the looser `Load step
     // tolerance`: they only lead to the equilibrium, and the last step
-    // converges to the full tolerance from wherever they end. Newton's
-    // method converges slowly where the load turns the body (the tip block
-    // of a pendulum pushed sideways); the iterations to a tight tolerance
-    // in every intermediate step were most of the cost of such starts.
+    // converges to the full tolerance from wherever they end (what this
+    // saves in the pendulums' starts: doc/performance_discussion.md).
     Parameters::NonlinearSolver path_parameters = parameters;
     path_parameters.newton_relative_tolerance =
       std::max(parameters.load_step_tolerance,
