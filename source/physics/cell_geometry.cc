@@ -40,6 +40,15 @@ namespace SoftRobot
       for (unsigned int i = 0; i < dofs_per_cell; ++i)
         reference_gradients.push_back(
           fe.shape_grad_component(i, quadrature.point(q), components[i]));
+    // cell_gradients() relies on the components of a node sharing their
+    // scalar shape function.
+    for (unsigned int q = 0; q < n_q_points; ++q)
+      for (unsigned int a = 0; a < n_shape_functions; ++a)
+        for (unsigned int c = 1; c < dim; ++c)
+          AssertThrow(
+            reference_gradients[q * dofs_per_cell + shape_dofs[a * dim + c]] ==
+              reference_gradients[q * dofs_per_cell + shape_dofs[a * dim]],
+            ExcInternalError());
 
     FEValues<dim>                        fe_values(mapping,
                             fe,
@@ -71,7 +80,9 @@ namespace SoftRobot
   // @sect4{CellGeometry::cell_gradients}
   //
   // $(\nabla_0\varphi_i)_k = \sum_l \hat\partial_l\varphi_i\,
-  // (\mathbf J^{-1})_{lk}$, the transformation FEValues applies.
+  // (\mathbf J^{-1})_{lk}$, the transformation FEValues applies. The dim
+  // shape functions of a node share one scalar function, so the gradient
+  // is transformed once per node and copied to its components.
   template <int dim>
   void
   CellGeometry<dim>::cell_gradients(
@@ -86,8 +97,13 @@ namespace SoftRobot
         const Tensor<1, dim> *reference =
           &reference_gradients[q * dofs_per_cell];
         Tensor<1, dim> *result = &gradients[q * dofs_per_cell];
-        for (unsigned int i = 0; i < dofs_per_cell; ++i)
-          result[i] = reference[i] * inverse;
+        for (unsigned int a = 0; a < n_shape_functions; ++a)
+          {
+            const Tensor<1, dim> gradient =
+              reference[shape_dofs[a * dim]] * inverse;
+            for (unsigned int c = 0; c < dim; ++c)
+              result[shape_dofs[a * dim + c]] = gradient;
+          }
       }
   }
 

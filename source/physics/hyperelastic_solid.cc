@@ -92,7 +92,9 @@ namespace SoftRobot
   // @sect4{HyperelasticSolid::displacement_gradients}
   //
   // $\mathbf H = \nabla_0\mathbf u = \sum_i u_i\,\mathbf e_{c_i}\otimes
-  // \nabla_0\varphi_i$ at every quadrature point of the cell.
+  // \nabla_0\varphi_i$ at every quadrature point of the cell, node by
+  // node: the node's displacement vector times the gradient its components
+  // share.
   template <int dim>
   void
   HyperelasticSolid<dim>::displacement_gradients(
@@ -102,11 +104,15 @@ namespace SoftRobot
   {
     const unsigned int               n_q  = geometry.n_q_points;
     const unsigned int               n    = geometry.dofs_per_cell;
-    const std::vector<unsigned int> &comp = geometry.components;
+    const std::vector<unsigned int> &dofs = geometry.shape_dofs;
     H.assign(n_q, Tensor<2, dim>());
     for (unsigned int q = 0; q < n_q; ++q)
-      for (unsigned int i = 0; i < n; ++i)
-        H[q][comp[i]] += cell_u[i] * grad_phi[q * n + i];
+      for (unsigned int a = 0; a < geometry.n_shape_functions; ++a)
+        {
+          const Tensor<1, dim> &gradient = grad_phi[q * n + dofs[a * dim]];
+          for (unsigned int c = 0; c < dim; ++c)
+            H[q][c] += cell_u[dofs[a * dim + c]] * gradient;
+        }
   }
 
 
@@ -231,13 +237,20 @@ namespace SoftRobot
 
     if (projected && (with_matrix || viscous_cell(local)))
       {
+        // The derivative of the point's volume, $(\mathrm{cof}\,\mathbf
+        // F)_{c_i}\cdot\nabla_0\varphi_i$, is formed once per shape
+        // function and then weighted by each mode.
         const Tensor<2, dim> cofactor = J * transpose(invert(F));
-        for (unsigned int m = 0; m < projection.n_modes(); ++m)
+        const unsigned int   n_modes  = projection.n_modes();
+        typename DilatationProjection<dim>::ModeVector w;
+        for (unsigned int m = 0; m < n_modes; ++m)
+          w[m] = projection.mode(q, m) * JxW;
+        FullMatrix<double> &G = local.workspace.volume_gradients;
+        for (unsigned int i = 0; i < n; ++i)
           {
-            const double w = projection.mode(q, m) * JxW;
-            for (unsigned int i = 0; i < n; ++i)
-              local.workspace.volume_gradients(m, i) +=
-                (cofactor[comp[i]] * grad_phi[i]) * w;
+            const double g = cofactor[comp[i]] * grad_phi[i];
+            for (unsigned int m = 0; m < n_modes; ++m)
+              G(m, i) += g * w[m];
           }
       }
 

@@ -98,12 +98,15 @@ namespace SoftRobot
         const Tensor<2, dim> M =
           J * (trace(F_inverse * L) * transpose(F_inverse) -
                transpose(F_inverse * L * F_inverse));
+        typename DilatationProjection<dim>::ModeVector w;
         for (unsigned int m = 0; m < point.n_modes; ++m)
+          w[m] = point.modes[m] * JxW;
+        FullMatrix<double> &H = local.workspace.rate_gradients;
+        for (unsigned int j = 0; j < n; ++j)
           {
-            const double w = point.modes[m] * JxW;
-            for (unsigned int j = 0; j < n; ++j)
-              local.workspace.rate_gradients(m, j) +=
-                (M[comp[j]] * grad_phi[j]) * w;
+            const double h = M[comp[j]] * grad_phi[j];
+            for (unsigned int m = 0; m < point.n_modes; ++m)
+              H(m, j) += h * w[m];
           }
       }
   }
@@ -179,16 +182,23 @@ namespace SoftRobot
       local.request.velocity_coefficient);
     if (!with_matrix || symmetric_tangent)
       return;
+    // $(\mathbf G^T\mathbf A_v)\mathbf H$, the product on the left formed
+    // once per row.
     const FullMatrix<double> &H = local.workspace.rate_gradients;
     for (unsigned int i = 0; i < n; ++i)
-      for (unsigned int j = 0; j < n; ++j)
-        {
-          double value = 0.;
+      {
+        typename DilatationProjection<dim>::ModeVector row = {};
+        for (unsigned int k = 0; k < n_modes; ++k)
           for (unsigned int m = 0; m < n_modes; ++m)
+            row[k] += G(m, i) * stiffness[m][k];
+        for (unsigned int j = 0; j < n; ++j)
+          {
+            double value = 0.;
             for (unsigned int k = 0; k < n_modes; ++k)
-              value += G(m, i) * stiffness[m][k] * H(k, j);
-          local.workspace.nonsymmetric_matrix(i, j) += value;
-        }
+              value += row[k] * H(k, j);
+            local.workspace.nonsymmetric_matrix(i, j) += value;
+          }
+      }
     local.workspace.has_nonsymmetric_part = true;
   }
 
