@@ -105,6 +105,20 @@ namespace SoftRobot
                     FullMatrix<double>       *matrix_2,
                     const double              scale_2);
 
+    // One point's share of the moments' derivatives, $G_{mi} \mathrel{+}=
+    // w_m\,\mathbf T_{c_i}\cdot\nabla_0\varphi_i$, with $\mathbf T$ the
+    // derivative of the point's integrand with respect to $\mathbf F$ (the
+    // cofactor for the volume) and the weights $w_m = N_m\,dV$. The dot
+    // product is formed once per shape function and then weighted by each
+    // of the first n_modes weights.
+    static void
+    add_point_derivatives(const Tensor<2, dim>            &T,
+                          const Tensor<1, dim>            *grad_phi,
+                          const std::vector<unsigned int> &components,
+                          const ModeVector                &weights,
+                          const unsigned int               n_modes,
+                          FullMatrix<double>              &G);
+
   private:
     const CellGeometry<dim> &geometry;
     const unsigned int       n;

@@ -40,8 +40,9 @@ namespace SoftRobot
       for (unsigned int i = 0; i < dofs_per_cell; ++i)
         reference_gradients.push_back(
           fe.shape_grad_component(i, quadrature.point(q), components[i]));
-    // cell_gradients() relies on the components of a node sharing their
-    // scalar shape function.
+    // cell_gradients() and the sums node by node of the physics
+    // (HyperelasticSolid::displacement_gradients()) rely on the components
+    // of a node sharing their scalar shape function.
     for (unsigned int q = 0; q < n_q_points; ++q)
       for (unsigned int a = 0; a < n_shape_functions; ++a)
         for (unsigned int c = 1; c < dim; ++c)

@@ -154,6 +154,26 @@ namespace SoftRobot
 
 
 
+  template <int dim>
+  void
+  DilatationProjection<dim>::add_point_derivatives(
+    const Tensor<2, dim>            &T,
+    const Tensor<1, dim>            *grad_phi,
+    const std::vector<unsigned int> &components,
+    const ModeVector                &weights,
+    const unsigned int               n_modes,
+    FullMatrix<double>              &G)
+  {
+    for (unsigned int i = 0; i < G.n(); ++i)
+      {
+        const double g = T[components[i]] * grad_phi[i];
+        for (unsigned int m = 0; m < n_modes; ++m)
+          G(m, i) += g * weights[m];
+      }
+  }
+
+
+
 #define SOFT_ROBOT_INSTANTIATE(dim) template class DilatationProjection<dim>;
   SOFT_ROBOT_FOR_EACH_DIMENSION(SOFT_ROBOT_INSTANTIATE)
 #undef SOFT_ROBOT_INSTANTIATE

@@ -237,21 +237,17 @@ namespace SoftRobot
 
     if (projected && (with_matrix || viscous_cell(local)))
       {
-        // The derivative of the point's volume, $(\mathrm{cof}\,\mathbf
-        // F)_{c_i}\cdot\nabla_0\varphi_i$, is formed once per shape
-        // function and then weighted by each mode.
-        const Tensor<2, dim> cofactor = J * transpose(invert(F));
-        const unsigned int   n_modes  = projection.n_modes();
+        const unsigned int n_modes = projection.n_modes();
         typename DilatationProjection<dim>::ModeVector w;
         for (unsigned int m = 0; m < n_modes; ++m)
           w[m] = projection.mode(q, m) * JxW;
-        FullMatrix<double> &G = local.workspace.volume_gradients;
-        for (unsigned int i = 0; i < n; ++i)
-          {
-            const double g = cofactor[comp[i]] * grad_phi[i];
-            for (unsigned int m = 0; m < n_modes; ++m)
-              G(m, i) += g * w[m];
-          }
+        DilatationProjection<dim>::add_point_derivatives(
+          J * transpose(invert(F)),
+          grad_phi,
+          comp,
+          w,
+          n_modes,
+          local.workspace.volume_gradients);
       }
 
     // The force $\int\delta\mathbf E_i:\mathbf S = \int\mathbf

@@ -101,13 +101,8 @@ namespace SoftRobot
         typename DilatationProjection<dim>::ModeVector w;
         for (unsigned int m = 0; m < point.n_modes; ++m)
           w[m] = point.modes[m] * JxW;
-        FullMatrix<double> &H = local.workspace.rate_gradients;
-        for (unsigned int j = 0; j < n; ++j)
-          {
-            const double h = M[comp[j]] * grad_phi[j];
-            for (unsigned int m = 0; m < point.n_modes; ++m)
-              H(m, j) += h * w[m];
-          }
+        DilatationProjection<dim>::add_point_derivatives(
+          M, grad_phi, comp, w, point.n_modes, local.workspace.rate_gradients);
       }
   }
 
