@@ -15,7 +15,9 @@
 #                              the scenes already run from the same inputs
 #   ./soft-robot.sh benchmark  build in Release, run the speed benchmark (and
 #                              CalculiX as the peer) one case at a time and
-#                              write doc/performance.md
+#                              write doc/performance.md; with --cases studies,
+#                              the earlier discretisations' studies into
+#                              doc/performance_studies.md
 #   ./soft-robot.sh stability  build in Release, run the study of stiff and
 #                              extreme cases and write doc/stability.md
 #   ./soft-robot.sh locking    build in Release, run the locking study (linear

@@ -6,6 +6,15 @@ soft-robot, one at a time, and writes doc/performance.md.
     ./soft-robot.sh benchmark               (builds, then runs this script)
     python3 doc/performance/run_benchmarks.py build-release [--cases a,b]
                                               [--skip-calculix]
+    ./soft-robot.sh benchmark --cases studies   (writes doc/performance_studies.md)
+
+Without --cases the benchmark runs the group `default`: the three
+experiments on the scenes' default discretisation (quadratic hexahedra),
+its refinement series, the headline of the linear tetrahedra and the
+reduced scenes, into doc/performance.md. The group `studies` holds the
+studies of the discretisations the scenes used before (linear tetrahedra
+with the sparse direct solvers and multigrid over a refinement series,
+quadratic tetrahedra in the mean-dilatation formulation).
 
 Every case is a scene of parameters/bellows/ with command-line overrides
 (`--set`). The program writes `run_statistics.json` into its output
@@ -14,10 +23,10 @@ of each timed section, peak memory); this script adds the tip frequency
 from `tip_spectrum.csv` and the wall time it measured itself, and prints
 one table. Cases marked "window" run only the first part of the motion
 (their cost per step is what they measure; a tip frequency needs the whole
-record). The peer, CalculiX, runs the headline case (linear tetrahedra,
-C3D4), the quadratic one (p2md_headline_kept, C3D10) and the scenes'
-default (default_vertical, C3D20) through calculix_peer.py in the same
-session, each if its case ran.
+record). The peer, CalculiX, runs the scenes' default (default_vertical, C3D20),
+the headline of the linear tetrahedra (C3D4) and the quadratic tetrahedra
+(p2md_headline_kept, C3D10) through calculix_peer.py in the same session,
+each if its case ran.
 
 Nothing here is a test: the numbers depend on the machine, and they are
 reported, not checked.
@@ -117,12 +126,48 @@ DEFAULT_SERIES = ("hex-1-3-1-2", "hex-2-6-2-2", "hex-1-3-1-2-refined")
 # each, the static equilibrium included.
 P2MD_SERIES_LEVELS = SERIES_LEVELS[:3]
 
-# name, scene, overrides, MPI processes, description
-CASES = [
+# name, scene, overrides, MPI processes, description. The benchmark proper
+# (`./soft-robot.sh benchmark`, or `--cases default`): the three experiments
+# on the scenes' default discretisation, the first of them the headline, its
+# refinement series, the headline of the linear tetrahedra the scenes used
+# before (with its CalculiX peer; it must not get slower) and the reduced
+# scenes.
+DEFAULT_CASES = [
+    # The scenes as they are (cases default_*: the tetrahedral defaults are
+    # not restored): quadratic hexahedra with the linear dilatation, the
+    # matrix kept across steps, Newton tolerance 1e-6 of the force scale.
+    ("default_vertical", HEADLINE, [], 1,
+     "exp. 1 DS20 quarter on the scenes' default (hex-1-3-1-2, quadratic "
+     "hexahedra with linear dilatation), 5.25 s"),
+    ("default_planar", "parameters/bellows/planar_ds20_3d.prm", [], 1,
+     "exp. 2 DS20 half model on the scenes' default, 6 s"),
+    ("default_spherical", "parameters/bellows/spherical_ds20_3d.prm", [], 1,
+     "exp. 3 DS20 full model on the scenes' default, 6 s"),
+] + [
+    (f"default_{mesh}_window", HEADLINE,
+     HEX_MESHES[mesh][0] + ["Time integration/End time=0.25",
+                            "Output/Spectral analysis=false"], 1,
+     f"exp. 1 DS20 quarter on the scenes' default with mesh {mesh} "
+     f"({HEX_MESHES[mesh][1]}), first 0.25 s")
+    for mesh in DEFAULT_SERIES
+] + [
     ("headline", HEADLINE, [], 1,
-     "exp. 1 DS20 quarter, coarse P1, 5.25 s (the reference's 1,800 s case)"),
+     "exp. 1 DS20 quarter, coarse P1 (the scenes' linear tetrahedra before the "
+     "hexahedral default), 5.25 s (the reference's 1,800 s case)"),
+    ("column_1d", "parameters/bellows/column_ds20_1d.prm", [], 1,
+     "reduced 1D column, 5.25 s"),
+    ("planar_2d", "parameters/bellows/planar_ds20_2d.prm", [], 1,
+     "reduced 2D strip, 6 s"),
+]
+
+# The studies of the discretisations and solvers the scenes used before the
+# hexahedral default (these cases restore the linear tetrahedra, see
+# run_case_once()) and of the quadratic tetrahedra in the mean-dilatation
+# formulation: `--cases studies` runs them all, into
+# doc/performance_studies.md.
+STUDY_CASES = [
     ("headline_1_thread", HEADLINE, [], 1,
-     "the same with one thread (DEAL_II_NUM_THREADS=1)"),
+     "the headline with one thread (DEAL_II_NUM_THREADS=1)"),
     ("headline_mpi2", HEADLINE, [], 2,
      "the same on 2 MPI processes"),
     ("headline_full_newton", HEADLINE,
@@ -194,33 +239,15 @@ CASES = [
 ] + [
     ("headline_kept", HEADLINE, KEPT, 1,
      "the headline, matrix kept across steps, Newton tolerance 1e-6"),
-    # The scenes as they are (cases default_*: the tetrahedral defaults are
-    # not restored): quadratic hexahedra with the linear dilatation, the
-    # matrix kept across steps, Newton tolerance 1e-6 of the force scale.
-    ("default_vertical", HEADLINE, [], 1,
-     "exp. 1 DS20 quarter on the scenes' default (hex-1-3-1-2, quadratic "
-     "hexahedra with linear dilatation), 5.25 s"),
-    ("default_planar", "parameters/bellows/planar_ds20_3d.prm", [], 1,
-     "exp. 2 DS20 half model on the scenes' default, 6 s"),
-    ("default_spherical", "parameters/bellows/spherical_ds20_3d.prm", [], 1,
-     "exp. 3 DS20 full model on the scenes' default, 6 s"),
-] + [
-    (f"default_{mesh}_window", HEADLINE,
-     HEX_MESHES[mesh][0] + ["Time integration/End time=0.25",
-                            "Output/Spectral analysis=false"], 1,
-     f"exp. 1 DS20 quarter on the scenes' default with mesh {mesh} "
-     f"({HEX_MESHES[mesh][1]}), first 0.25 s")
-    for mesh in DEFAULT_SERIES
-] + [
     ("planar_3d", "parameters/bellows/planar_ds20_3d.prm", [], 1,
      "exp. 2 DS20 half model, 6 s (reference: 5,000 s)"),
     ("spherical_3d", "parameters/bellows/spherical_ds20_3d.prm", [], 1,
      "exp. 3 DS20 full model, 6 s (reference: 2,200 s)"),
-    ("column_1d", "parameters/bellows/column_ds20_1d.prm", [], 1,
-     "reduced 1D column, 5.25 s"),
-    ("planar_2d", "parameters/bellows/planar_ds20_2d.prm", [], 1,
-     "reduced 2D strip, 6 s"),
 ]
+
+CASES = DEFAULT_CASES + STUDY_CASES
+GROUPS = {"default": [case[0] for case in DEFAULT_CASES],
+          "studies": [case[0] for case in STUDY_CASES]}
 
 REFERENCE_SECONDS = {"headline": 1800., "planar_3d": 5000., "spherical_3d": 2200.,
                      "default_vertical": 1800., "default_planar": 5000.,
@@ -346,7 +373,10 @@ def run_case_once(build, output_root, case, reuse=False, label=""):
     ensure_mesh(overrides)
     command = [str(build / "soft-robot"), scene,
                "--set", f"Problem/Output directory={output}"]
-    restored = [] if name.startswith("default_") else tetrahedral_defaults(scene)
+    # The studies and the linear tetrahedra's headline run the scenes as the
+    # studies knew them; the other cases of the benchmark run them as they are.
+    restored = (tetrahedral_defaults(scene)
+                if name == "headline" or name in GROUPS["studies"] else [])
     for entry in restored + QUIET + overrides:
         command += ["--set", entry]
     if processes > 1:
@@ -377,9 +407,9 @@ def run_case_once(build, output_root, case, reuse=False, label=""):
 
 # The peers: our case, the mesh options of calculix_peer.py, the directory
 # of its output (under the benchmark's output).
-PEERS = (("headline", ["--degree", "1"], "calculix_peer"),
-         ("p2md_headline_kept", ["--degree", "2"], "calculix_peer_c3d10"),
-         ("default_vertical", ["--hex"], "calculix_peer_c3d20"))
+PEERS = (("default_vertical", ["--hex"], "calculix_peer_c3d20"),
+         ("headline", ["--degree", "1"], "calculix_peer"),
+         ("p2md_headline_kept", ["--degree", "2"], "calculix_peer_c3d10"))
 
 
 def run_calculix(output_root, cases):
@@ -512,11 +542,11 @@ def cost_series_table(lines, series, title, what):
         "and the process's fixed memory).\n")
 
 
-def write_report(path, results, calculix, run):
+def write_report(path, results, calculix, run, title):
     lines = []
     lines.append("<!-- Written by doc/performance/run_benchmarks.py; "
                  "the discussion is in doc/performance_discussion.md. -->")
-    lines.append("# Performance\n")
+    lines.append(f"# {title}\n")
     lines.append(f"Command: `{run['command']}`  ")
     lines.append(f"Commit: `{run['commit']}`, Release build  ")
     lines.append(f"Machine: {run['machine']}  ")
@@ -534,11 +564,18 @@ def write_report(path, results, calculix, run):
                  "counts all iterations, those with an old tangent included. "
                  "Assembly is the residual and matrix assemblies; solver set-up "
                  "is the sparse factorizations (or multigrid set-ups); solve is "
-                 "the back substitutions (or CG iterations).\n")
+                 "the back substitutions (or CG iterations). kB per dof is the "
+                 "peak memory divided by the unknowns (the libraries and the "
+                 "process's fixed memory included).\n")
+    if any(name == "default_vertical" for name, _, _ in results):
+        lines.append("The headline is `default_vertical`: experiment 1 on the scenes' "
+                     "default discretisation. `headline` is the same experiment on "
+                     "the linear tetrahedra the scenes used before, kept to show "
+                     "that it does not get slower.\n")
     lines.append("| case | cells | dofs | steps | wall s | process s | ms/step "
                  "| Newton/step | factorizations | assembly s | solver set-up s "
-                 "| solve s | output s | peak MB | tip f (Hz) |")
-    lines.append("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|")
+                 "| solve s | output s | peak MB | kB per dof | tip f (Hz) |")
+    lines.append("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|")
     for name, description, s in results:
         tip = "–" if not s["tip"] else f"{s['tip'][0]:.4f} ({s['tip'][1]})"
         lines.append(
@@ -550,7 +587,8 @@ def write_report(path, results, calculix, run):
             f"| {section(s, 'Assemble residual', 'Assemble system', 'Assemble tractions'):.2f} "
             f"| {section(s, 'Factorization', 'Preconditioner setup'):.2f} "
             f"| {section(s, 'Linear solve'):.2f} | {output_seconds(s)} "
-            f"| {s['peak_memory_mb']:.0f} | {tip} |")
+            f"| {s['peak_memory_mb']:.0f} | {1024 * s['peak_memory_mb'] / s['dofs']:.1f} "
+            f"| {tip} |")
     lines.append("")
     for name, description, s in results:
         lines.append(f"- **{name}**: {description}; {s['mpi_processes']} process(es) "
@@ -838,9 +876,14 @@ def main():
     parser = argparse.ArgumentParser(description=__doc__,
                                      formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("build", help="the Release build directory")
-    parser.add_argument("--cases", help="comma-separated case names (default: all)")
+    parser.add_argument("--cases",
+                        help="comma-separated case names or groups: 'default' (the "
+                        "benchmark, what runs without --cases) or 'studies' (the "
+                        "earlier discretisations' studies)")
     parser.add_argument("--output", default="output/benchmarks")
-    parser.add_argument("--report", default="doc/performance.md")
+    parser.add_argument("--report",
+                        help="the report to write (default: doc/performance.md, or "
+                        "doc/performance_studies.md when only studies run)")
     parser.add_argument("--skip-calculix", action="store_true")
     parser.add_argument("--report-only", action="store_true",
                         help="write the report from the output of the last run")
@@ -849,14 +892,17 @@ def main():
     build = Path(arguments.build).resolve()
     if not (build / "soft-robot").exists():
         sys.exit(f"{build / 'soft-robot'} does not exist: build in Release first")
-    selected = CASES
-    if arguments.cases:
-        names = arguments.cases.split(",")
-        unknown = set(names) - {case[0] for case in CASES}
-        if unknown:
-            sys.exit(f"unknown case(s): {', '.join(sorted(unknown))}; "
-                     f"known: {', '.join(case[0] for case in CASES)}")
-        selected = [case for case in CASES if case[0] in names]
+    names = []
+    for name in (arguments.cases or "default").split(","):
+        names += GROUPS.get(name, [name])
+    unknown = set(names) - {case[0] for case in CASES}
+    if unknown:
+        sys.exit(f"unknown case(s): {', '.join(sorted(unknown))}; known: the groups "
+                 f"{', '.join(GROUPS)} and {', '.join(case[0] for case in CASES)}")
+    selected = [case for case in CASES if case[0] in names]
+    studies_only = all(case[0] in GROUPS["studies"] for case in selected)
+    report = arguments.report or ("doc/performance_studies.md" if studies_only
+                                  else "doc/performance.md")
     output_root = (REPOSITORY / arguments.output).resolve()
     output_root.mkdir(parents=True, exist_ok=True)
 
@@ -878,7 +924,9 @@ def main():
     else:
         calculix = (None if arguments.skip_calculix
                     else run_calculix(output_root, [case[0] for case in selected]))
-    write_report(REPOSITORY / arguments.report, results, calculix, run)
+    write_report(REPOSITORY / report, results, calculix, run,
+                 "Performance: studies of the earlier discretisations" if studies_only
+                 else "Performance")
 
 
 if __name__ == "__main__":
