@@ -52,6 +52,10 @@ from study_session import tetrahedral_defaults  # noqa: E402
 HEADLINE = "parameters/bellows/vertical_ds20_3d.prm"
 # (the repeats of a case run into the same directory)
 QUIET = ["Output/Progress interval=0", "Output/Existing output=replace"]
+# The timed sections of the assemblies: the residuals of the Newton
+# iterations, the state a step ends in (with the viscosity of the next
+# step), the matrices, and the tractions.
+ASSEMBLY = ("Assemble residual", "Assemble state", "Assemble system", "Assemble tractions")
 
 # The meshes of the refinement series: the quarter model's gmsh meshes with
 # element sizes 10.5 (coarse), 5, 3, 2 and 1 mm. The ultrafine one is not
@@ -473,8 +477,8 @@ def commit():
 def per_iteration(s):
     """Milliseconds of assembly, solver set-up and solves per Newton
     iteration."""
-    work = section(s, "Assemble residual", "Assemble system", "Factorization",
-                   "Preconditioner setup", "Linear solve")
+    work = section(s, *ASSEMBLY, "Factorization", "Preconditioner setup",
+                   "Linear solve")
     return 1000 * work / max(s["newton_iterations"], 1)
 
 
@@ -502,9 +506,8 @@ def cost_series_table(lines, series, title, what):
     lines.append("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|---:|---:|")
 
     def step_ms(r):
-        return 1000 * section(r, "Assemble residual", "Assemble system",
-                              "Assemble tractions", "Factorization",
-                              "Preconditioner setup", "Linear solve") / max(r["steps"], 1)
+        return 1000 * section(r, *ASSEMBLY, "Factorization", "Preconditioner setup",
+                              "Linear solve") / max(r["steps"], 1)
 
     previous = None
     for level, r in series:
@@ -514,7 +517,7 @@ def cost_series_table(lines, series, title, what):
                     f"{math.log(per_step / previous[1]) / math.log(r['dofs'] / previous[0]):.2f}")
         lines.append(
             f"| {level} | {r['dofs']} | {per_step:.1f} | {exponent} "
-            f"| {1000 * section(r, 'Assemble residual', 'Assemble system', 'Assemble tractions') / steps:.1f} "
+            f"| {1000 * section(r, *ASSEMBLY) / steps:.1f} "
             f"| {1000 * section(r, 'Factorization', 'Preconditioner setup') / steps:.1f} "
             f"| {1000 * section(r, 'Linear solve') / steps:.1f} "
             f"| {r['newton_iterations'] / steps:.2f} "
@@ -526,8 +529,7 @@ def cost_series_table(lines, series, title, what):
     (first_level, a), (last_level, b) = series[0], series[-1]
     log_n = math.log(b["dofs"] / a["dofs"])
     parts = []
-    for label, names in (("assembly", ("Assemble residual", "Assemble system",
-                                       "Assemble tractions")),
+    for label, names in (("assembly", ASSEMBLY),
                          ("factorizations", ("Factorization", "Preconditioner setup")),
                          ("solves", ("Linear solve",))):
         ta, tb = section(a, *names) / a["steps"], section(b, *names) / b["steps"]
@@ -562,8 +564,9 @@ def write_report(path, results, calculix, run, title):
                  "process, builds and writes the files meanwhile (its time in "
                  "parentheses, the largest over the processes). Newton/step "
                  "counts all iterations, those with an old tangent included. "
-                 "Assembly is the residual and matrix assemblies; solver set-up "
-                 "is the sparse factorizations (or multigrid set-ups); solve is "
+                 "Assembly is the residual, state (the forces and the next "
+                 "step's viscosity at the end of a step) and matrix "
+                 "assemblies; solver set-up is the sparse factorizations (or multigrid set-ups); solve is "
                  "the back substitutions (or CG iterations). kB per dof is the "
                  "peak memory divided by the unknowns (the libraries and the "
                  "process's fixed memory included).\n")
@@ -584,7 +587,7 @@ def write_report(path, results, calculix, run, title):
             f"| {1000 * s['wall_seconds'] / max(s['steps'], 1):.1f} "
             f"| {s['newton_iterations'] / max(s['steps'], 1):.2f} "
             f"| {s['factorizations_or_amg_setups']} "
-            f"| {section(s, 'Assemble residual', 'Assemble system', 'Assemble tractions'):.2f} "
+            f"| {section(s, *ASSEMBLY):.2f} "
             f"| {section(s, 'Factorization', 'Preconditioner setup'):.2f} "
             f"| {section(s, 'Linear solve'):.2f} | {output_seconds(s)} "
             f"| {s['peak_memory_mb']:.0f} | {1024 * s['peak_memory_mb'] / s['dofs']:.1f} "

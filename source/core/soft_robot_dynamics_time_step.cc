@@ -46,7 +46,9 @@ namespace SoftRobot
   {
     TimerOutput::Scope timer_section(computing_timer,
                                      request.matrix ? "Assemble system"
-                                                    : "Assemble residual");
+                                     : request.store_viscosity
+                                       ? "Assemble state"
+                                       : "Assemble residual");
     if (request.matrix)
       kept_matrix_dt = 0.;
     Assert(damping_force != nullptr || !request.second_force,
