@@ -171,18 +171,18 @@ DEFAULT_CASES = [
 # doc/performance_studies.md.
 STUDY_CASES = [
     ("headline_1_thread", HEADLINE, [], 1,
-     "the headline with one thread (DEAL_II_NUM_THREADS=1)"),
+     "the linear headline with one thread (DEAL_II_NUM_THREADS=1)"),
     ("headline_mpi2", HEADLINE, [], 2,
-     "the same on 2 MPI processes"),
+     "the linear headline on 2 MPI processes"),
     ("headline_full_newton", HEADLINE,
      ["Nonlinear solver/Tangent update=every iteration"], 1,
-     "the same with a new tangent in every Newton iteration"),
+     "the linear headline with a new tangent in every Newton iteration"),
     ("headline_no_output", HEADLINE,
      ["Output/Write VTU=false"], 1,
-     "the same without VTU output"),
+     "the linear headline without VTU output"),
     ("headline_reference_assembly", HEADLINE,
      ["Finite element/Direct addresses=false"], 1,
-     "the same with the reference global addition (AffineConstraints) "
+     "the linear headline with the reference global addition (AffineConstraints) "
      "instead of the direct-address assembler"),
     # The refinement series: the quarter model's gmsh meshes, the first
     # 0.5 s each, with the sparse direct solvers and with CG and algebraic
@@ -566,8 +566,9 @@ def write_report(path, results, calculix, run, title):
                  "counts all iterations, those with an old tangent included. "
                  "Assembly is the residual, state (the forces and the next "
                  "step's viscosity at the end of a step) and matrix "
-                 "assemblies; solver set-up is the sparse factorizations (or multigrid set-ups); solve is "
-                 "the back substitutions (or CG iterations). kB per dof is the "
+                 "assemblies; solver set-up is the sparse factorizations (or "
+                 "multigrid set-ups); solve is the back substitutions (or CG "
+                 "iterations). kB per dof is the "
                  "peak memory divided by the unknowns (the libraries and the "
                  "process's fixed memory included).\n")
     if any(name == "default_vertical" for name, _, _ in results):
