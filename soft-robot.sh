@@ -24,10 +24,10 @@
 #                              and quadratic elements, kappa/mu up to 1e4) and
 #                              write doc/locking.md
 #   ./soft-robot.sh error-vs-runtime
-#                              build in Release, run experiment 1 over meshes,
-#                              degrees, formulations and time steps (3D and
-#                              1D; reads the locking study's dt = 0.01 s runs)
-#                              and write doc/error-vs-runtime.md
+#                              build in Release, run the three experiments on
+#                              the default over time steps, on finer meshes
+#                              (the references), on tetrahedra and as the
+#                              reduced scenes, and write doc/error-vs-runtime.md
 #   ./soft-robot.sh twisting-column
 #                              build in Release, run the twisting-column
 #                              benchmark and write doc/twisting_column.md
