@@ -63,7 +63,7 @@ FIGURES = "doc/figures/error_vs_runtime"
 sys.path.insert(0, str(REPOSITORY / "doc" / "performance"))
 sys.path.insert(0, str(REPOSITORY / "doc" / "stability"))
 sys.path.insert(0, str(REPOSITORY / "doc"))
-from run_benchmarks import write_with_discussion_link  # noqa: E402
+from run_benchmarks import HEX_MESHES, write_with_discussion_link  # noqa: E402
 from study_session import run_lines, study_main, tetrahedral_defaults  # noqa: E402
 from run_stability import read_trajectory, run_program  # noqa: E402
 
@@ -85,6 +85,8 @@ def experiment_of(name):
     """Experiment 1 (vertical), 2 (planar pendulum) or 3 (spherical)."""
     return ("2" if name.startswith("planar") else
             "3" if name.startswith("spherical") else "1")
+
+
 P2 = ["Finite element/Polynomial degree=2"]
 MD = ["Finite element/Volumetric formulation=mean dilatation"]
 
@@ -110,7 +112,7 @@ for dt in (0.02, 0.01, 0.005):
                   dt_entry(dt), dt, False))
 CASES.append(("hex_refined_dt0.005", "3D", "3D hexahedra, refined mesh",
               "Q2 hex-1-3-1-2 refined once, dt = 0.005", SCENE_3D,
-              ["Geometry/Global refinements=1"] + dt_entry(0.005), 0.005, False))
+              HEX_MESHES["hex-1-3-1-2-refined"][0] + dt_entry(0.005), 0.005, False))
 CASES.append(("p1_coarse_dt0.005", "3D", "3D P1 tetrahedra",
               "P1 coarse tetrahedra, dt = 0.005", SCENE_3D, dt_entry(0.005), 0.005,
               True))
@@ -125,17 +127,15 @@ for dt in (0.01, 0.005):
 # hexahedral mesh of the swing study as the reference (hex-2-6-2-2 for the
 # half model, hex-2-3-1-2 for the full one, doc/reference_swing_hex.md),
 # the linear tetrahedra, and the reduced 2D strip of experiment 2.
-FINER = {"planar": ("hex-2-6-2-2", ["Geometry/Bellows/Cells through the wall=2",
-                                    "Geometry/Bellows/Cells along a flank=6",
-                                    "Geometry/Bellows/Cells per chord=2"]),
-         "spherical": ("hex-2-3-1-2", ["Geometry/Bellows/Cells through the wall=2"])}
+FINER = {"planar": "hex-2-6-2-2", "spherical": "hex-2-3-1-2"}
 for scene, experiment in ((SCENE_PLANAR_3D, "planar"), (SCENE_SPHERICAL_3D, "spherical")):
-    mesh, entries = FINER[experiment]
+    mesh = FINER[experiment]
     CASES.append((f"{experiment}_hex_dt0.01", "3D", "3D hexahedra, default mesh",
                   "Q2 hex-1-3-1-2 (default), dt = 0.01", scene, dt_entry(0.01), 0.01,
                   False))
     CASES.append((f"{experiment}_{mesh}_dt0.01", "3D", "3D hexahedra, finer mesh",
-                  f"Q2 {mesh}, dt = 0.01", scene, entries + dt_entry(0.01), 0.01, False))
+                  f"Q2 {mesh}, dt = 0.01", scene, HEX_MESHES[mesh][0] + dt_entry(0.01), 0.01,
+                  False))
     CASES.append((f"{experiment}_p1_coarse_dt0.01", "3D", "3D P1 tetrahedra",
                   "P1 coarse tetrahedra, dt = 0.01", scene, dt_entry(0.01), 0.01, True))
 for dt in (0.01, 0.005):
