@@ -35,6 +35,15 @@ The errors.
   2 and 3) (`f_damped_fit_Hz` of tip_spectrum.csv), relative to the
   reference's;
 - damping: the modal-fit damping ratio `xi_fit`, relative;
+- damping from the energy: the damping ratio a lightly damped harmonic
+  motion of the same frequency would need to lose what the damping
+  takes after the first second, xi_E = Delta D / (8 pi f Delta t <T>)
+  (D the energy the damping has taken, T the kinetic energy, both of the
+  whole body, `tip_trajectory.csv`), relative. It counts every direction
+  of the motion, so an exchange of amplitude between the two directions
+  of a swing does not move it, unlike the modal fit of one direction;
+  it weighs the modes by their kinetic energy, so it is a measure to
+  compare two runs with, not a modal damping ratio;
 - trajectory: the root mean square over the record of u(t) - u_ref(t) (the
   tip's vertical displacement u_x in experiment 1, its displacement vector
   in the components both runs have in experiments 2 and 3, linearly
@@ -240,7 +249,25 @@ def load_case(output_root, name):
         for component in ("u_x", "u_y", "u_z"):
             if component in d:
                 result[component] = d[component].tolist()
+        frequency = (result.get("spectrum") or {}).get("f_damped_fit_Hz")
+        if frequency and result.get("status") == "finished":
+            result["xi_energy"] = energy_damping_ratio(d, frequency)
     return result
+
+
+FIT_START = 1.0  # s: the modal fits leave out the first second, so does xi_E
+
+
+def energy_damping_ratio(d, frequency):
+    """xi_E = Delta D / (8 pi f Delta t <T>) after the first second: a
+    lightly damped harmonic motion of energy E = 2 <T> loses 4 pi xi E
+    per cycle."""
+    window = d["t"] >= FIT_START
+    t = d["t"][window]
+    duration = t[-1] - t[0]
+    mean_kinetic = np.trapz(d["kinetic"][window], t) / duration
+    dissipated = d["damping_dissipation"][window][-1] - d["damping_dissipation"][window][0]
+    return dissipated / (8. * math.pi * frequency * duration * mean_kinetic)
 
 
 # @sect{Errors}
@@ -265,6 +292,9 @@ def errors_against(result, reference):
         oscillation += np.mean((u_ref - u_ref.mean()) ** 2)
     return {"frequency": s["f_damped_fit_Hz"] / r["f_damped_fit_Hz"] - 1.,
             "damping": s["xi_fit"] / r["xi_fit"] - 1.,
+            "damping_energy": (result["xi_energy"] / reference["xi_energy"] - 1.
+                               if result.get("xi_energy") and reference.get("xi_energy")
+                               else None),
             "trajectory": math.sqrt(difference / oscillation)}
 
 
@@ -352,18 +382,20 @@ EXPERIMENTS = {
 
 def case_table(lines, results, errors):
     lines.append("| case | model | dofs | dt s | wall s | f fit Hz | ξ fit | error f "
-                 "| error ξ | error trajectory |")
-    lines.append("|---|---|---:|---:|---:|---:|---:|---:|---:|---:|")
+                 "| error ξ | ξ_E | error ξ_E | error trajectory |")
+    lines.append("|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|")
     for r in results:
         s = r.get("spectrum") or {}
         e = errors.get(r["name"]) or {}
         wall = f"{r['wall']:.1f}" if r.get("wall") else "–"
         f = f"{s['f_damped_fit_Hz']:.4f}" if s.get("f_damped_fit_Hz") else "–"
         xi = f"{s['xi_fit']:.5f}" if s.get("xi_fit") else "–"
+        xi_energy = f"{r['xi_energy']:.5f}" if r.get("xi_energy") else "–"
         status = "" if r["status"] == "finished" else f" **{r['status']}**"
         lines.append(f"| {r['label']}{status} | {r['model']} | {r.get('dofs', '–')} "
                      f"| {r['dt']:g} | {wall} | {f} | {xi} | {fmt_error(e.get('frequency'))} "
-                     f"| {fmt_error(e.get('damping'))} | {fmt_error(e.get('trajectory'))} |")
+                     f"| {fmt_error(e.get('damping'))} | {xi_energy} "
+                     f"| {fmt_error(e.get('damping_energy'))} | {fmt_error(e.get('trajectory'))} |")
     lines.append("")
 
 
