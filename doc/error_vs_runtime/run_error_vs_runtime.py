@@ -454,7 +454,10 @@ def write_report(path, results, session):
         "reference of the experiment: the frequency and damping ratio of the modal "
         "fit after the first second, and the RMS over the record of the difference "
         "of the tip trajectory divided by the RMS of the reference's oscillation "
-        "about its mean. Wall times are the program's own (`run_statistics.json`), "
+        "about its mean. ξ_E is the damping ratio from the energy the damping takes "
+        "after the first second, ΔD / (8π f Δt ⟨T⟩) with the whole body's "
+        "dissipation D and kinetic energy T: every direction of the motion counts, "
+        "but not HHT's algorithmic loss. Wall times are the program's own (`run_statistics.json`), "
         "one thread, two cases at a time (one on each core): indicative to some ten "
         "percent; errors below 1e-6 are drawn at 1e-6 in the figures.\n")
 
