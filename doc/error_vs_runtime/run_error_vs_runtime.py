@@ -423,7 +423,7 @@ def fastest_within(results, errors, reference, what):
 
     frequency = within({"frequency": 0.01})
     both = within({"frequency": 0.01, "damping": 0.05})
-    both_criterion = f"1 % of {what}'s frequency and 5 % of its damping ratio"
+    both_criterion = f"1 % of {what}'s frequency and 5 % of its modal damping ratio"
     if [r["name"] for _, r in frequency] == [r["name"] for _, r in both]:
         return sentence(both, both_criterion)
     return (sentence(frequency, f"1 % of {what}'s frequency") + " "
