@@ -119,7 +119,7 @@ for dt in (0.02, 0.01, 0.005):
     CASES.append((f"hex_dt{dt:g}", "3D", "3D hexahedra, default mesh",
                   f"Q2 hex-1-3-1-2 (default), dt = {dt:g}", SCENE_3D,
                   dt_entry(dt), dt, False))
-CASES.append(("hex_refined_dt0.005", "3D", "3D hexahedra, refined mesh",
+CASES.append(("hex_refined_dt0.005", "3D", "3D hexahedra, finer mesh",
               "Q2 hex-1-3-1-2 refined once, dt = 0.005", SCENE_3D,
               HEX_MESHES["hex-1-3-1-2-refined"][0] + dt_entry(0.005), 0.005, False))
 CASES.append(("p1_coarse_dt0.005", "3D", "3D P1 tetrahedra",
@@ -300,7 +300,6 @@ def errors_against(result, reference):
 
 FAMILY_STYLE = {
     "3D hexahedra, default mesh": ("tab:red", "-D"),
-    "3D hexahedra, refined mesh": ("tab:red", "s"),
     "3D hexahedra, finer mesh": ("tab:red", "s"),
     "3D P1 tetrahedra": ("tab:blue", "o"),
     "3D P2 mean dilatation tetrahedra": ("tab:orange", "*"),
@@ -333,8 +332,7 @@ def plot_work_precision(results, errors, path, title, reference):
             color, style = FAMILY_STYLE.get(family, ("k", "-o"))
             walls = [p[0] for p in points]
             values = [max(p[1], 1e-6) for p in points]
-            ax.plot(walls, values, style, color=color, ms=6, label=family,
-                    mfc="none" if ":" in style else color)
+            ax.plot(walls, values, style, color=color, ms=6, label=family)
         tolerance = {"frequency": 0.01, "damping": 0.05}.get(measure)
         if tolerance:
             ax.axhline(tolerance, color="k", lw=0.8, ls="--")
