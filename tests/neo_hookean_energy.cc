@@ -572,6 +572,35 @@ TYPED_TEST(NeoHookeanEnergyTest, StressIsDerivativeOfEnergy)
 // it cannot pass without testing the projection there. (The tangents of
 // the incompressible 1D and 2D models stay positive definite in all of
 // these states.)
+namespace
+{
+  // $\mathrm{tr}(\mathbf A\mathbf B)$ of the two tensors as symmetric
+  // matrices in Mandel's notation (off-diagonal components times
+  // $\sqrt2$); for the symmetric tensors here the Frobenius product of
+  // the matrices.
+  template <int dim>
+  double
+  mandel_product(const SymmetricTensor<4, dim> &A,
+                 const SymmetricTensor<4, dim> &B)
+  {
+    constexpr unsigned int n =
+      SymmetricTensor<2, dim>::n_independent_components;
+    double sum = 0.;
+    for (unsigned int a = 0; a < n; ++a)
+      for (unsigned int b = 0; b < n; ++b)
+        {
+          const TableIndices<2> i =
+            SymmetricTensor<2, dim>::unrolled_to_component_indices(a);
+          const TableIndices<2> j =
+            SymmetricTensor<2, dim>::unrolled_to_component_indices(b);
+          const double w =
+            ((i[0] == i[1]) ? 1. : 2.) * ((j[0] == j[1]) ? 1. : 2.);
+          sum += w * A[i[0]][i[1]][j[0]][j[1]] * B[i[0]][i[1]][j[0]][j[1]];
+        }
+    return sum;
+  }
+} // namespace
+
 TYPED_TEST(NeoHookeanEnergyTest, PositiveSemidefinitePartOfTangent)
 {
   constexpr int                          dim = TypeParam::value;
@@ -624,6 +653,13 @@ TYPED_TEST(NeoHookeanEnergyTest, PositiveSemidefinitePartOfTangent)
                         G * (CC_plus * E),
                         1e-10 * scale * E.norm() * G.norm());
           }
+        // The spectral projection, not only some positive semi-definite
+        // tensor below the tangent: the dropped part $\mathcal C -
+        // \mathcal C^+$ and $\mathcal C^+$ are orthogonal in Mandel's
+        // notation (they share eigenvectors, with disjoint eigenvalues).
+        EXPECT_NEAR(mandel_product(CC_plus, CC - CC_plus),
+                    0.,
+                    1e-12 * scale * scale);
       }
   if (dim == 3)
     EXPECT_TRUE(found_indefinite)

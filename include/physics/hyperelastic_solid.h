@@ -146,6 +146,17 @@ namespace SoftRobot
       return viscous && local.input_values.size() > 1;
     }
 
+    // Whether the cell's matrices need the derivatives $\mathbf G$ of the
+    // volume's moments (projected dilatation): the tangent, or the damping
+    // matrix of the volumetric viscosity. The forces are formed at the
+    // points without them.
+    bool
+    needs_volume_gradients(const CellContribution<dim> &local) const
+    {
+      return local.request.matrix ||
+             (viscous_cell(local) && local.request.second_matrix);
+    }
+
     // Whether the cell's tangent block is symmetric: unless the viscous
     // stress adds its non-symmetric part.
     Symmetry
@@ -170,15 +181,15 @@ namespace SoftRobot
                      const CellGeometry<dim>         &geometry);
 
     // The projected dilatation of a cell: the inverse Gram matrix of the
-    // modes, the stiffness of the moments $\mathbf A$, and for the
-    // Kelvin-Voigt damping the coefficients of the viscous pressure and its
-    // matrix $\mathbf A_v$; the point values (volume change, pressure,
-    // $U''$, viscous pressure) are in the work space.
+    // modes, the stiffness of the moments $\mathbf A$ and for the
+    // Kelvin-Voigt damping the matrix $\mathbf A_v$ of the viscous
+    // pressure (both only when the cell's matrices are asked for); the
+    // point values (volume change, pressure, $U''$, viscous pressure) are
+    // in the work space.
     struct CellDilatation
     {
       typename DilatationProjection<dim>::ModeMatrix inverse_gram{};
       typename DilatationProjection<dim>::ModeMatrix stiffness{};
-      typename DilatationProjection<dim>::ModeVector viscous_pressure{};
       typename DilatationProjection<dim>::ModeMatrix viscous_stiffness{};
     };
     CellDilatation

@@ -185,13 +185,15 @@ namespace SoftRobot
     // $\dot J = \mathrm{cof}\,\mathbf F:\mathbf L_0$ at the cell's points
     // (`point_rate`) the rate $\dot\Theta = \Pi\dot J$ of the projected
     // volume ratio, and the viscous pressure $p_v = \Pi(\zeta\kappa_v
-    // \dot\Theta)$: its coefficients (returned), its point values (into
-    // `local.workspace.point_viscous_pressure`) and $\mathbf A_v =
-    // \mathbf M^{-1}\int\zeta\kappa_v\mathbf N\mathbf N^T dV\,\mathbf
-    // M^{-1}$ (into `stiffness`). $\kappa_v$ is the point's recorded $U''$,
+    // \dot\Theta)$: its point values (into
+    // `local.workspace.point_viscous_pressure`, from which the points'
+    // force is formed) and, when the cell's matrices are asked for,
+    // $\mathbf A_v = \mathbf M^{-1}\int\zeta\kappa_v\mathbf N\mathbf
+    // N^T dV\,\mathbf M^{-1}$ (into `stiffness`). $\kappa_v$ is the point's
+    // recorded $U''$,
     // or with `local.request.store_viscosity` the current one
     // (`local.workspace.point_volumetric_stiffness`), which is recorded.
-    typename DilatationProjection<dim>::ModeVector
+    void
     volumetric_viscosity(
       const DilatationProjection<dim>                      &projection,
       const typename DilatationProjection<dim>::ModeMatrix &inverse_gram,
@@ -199,18 +201,18 @@ namespace SoftRobot
       CellContribution<dim>                                &local,
       typename DilatationProjection<dim>::ModeMatrix       &stiffness) const;
 
-    // The volumetric viscous force $\mathbf G^T\boldsymbol\pi_v$ with the
-    // derivatives $\mathbf G$ of the volume's moments
-    // (`local.workspace.volume_gradients`) and, with a matrix, $\mathbf
+    // The volumetric viscous terms of the matrices, with the derivatives
+    // $\mathbf G$ of the volume's moments
+    // (`local.workspace.volume_gradients`): in the tangent $\mathbf
     // G^T\mathbf A_v(c_v\mathbf G + \mathbf H)$ with the derivatives
     // $\mathbf H$ of the moments of the volume rate
-    // (`local.workspace.rate_gradients`, left out for a symmetric tangent);
-    // the damping matrix $\mathbf G^T\mathbf A_v\mathbf G$. The volume
-    // Hessian times $p_v$ came with the points.
+    // (`local.workspace.rate_gradients`, left out for a symmetric tangent),
+    // in the damping matrix $\mathbf G^T\mathbf A_v\mathbf G$. The force
+    // $\mathbf G^T\boldsymbol\pi_v$ and the volume Hessian times $p_v$
+    // came with the points.
     void
     add_volumetric_contribution(
       const unsigned int                                    n_modes,
-      const typename DilatationProjection<dim>::ModeVector &coefficients,
       const typename DilatationProjection<dim>::ModeMatrix &stiffness,
       CellContribution<dim>                                &local) const;
 

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: LGPL-2.1-or-later
 
 #include <Sacado.hpp>
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <deal.II/differentiation/ad.h>
@@ -376,9 +377,14 @@ namespace SoftRobot
 
 
 
-  // The eigenvalues of the at most 6 x 6 matrix by the cyclic Jacobi method,
-  // which for so small a matrix converges in a handful of sweeps to full
-  // precision and needs no allocation.
+  // The eigenvalues and eigenvectors of the at most 6 x 6 matrix, in the
+  // way of LAPACK's dsyev but without its calls: a Householder reduction to
+  // tridiagonal form, then implicit symmetric QR steps with Wilkinson's
+  // shift (Golub and Van Loan, Matrix Computations, sections 8.3.1 and
+  // 8.3.5), the orthogonal transformations collected in Q so that M = Q T
+  // Q^T throughout. For these matrices that is about ten QR steps, and
+  // 2.4 times faster than the cyclic Jacobi method used before
+  // (doc/performance_discussion.md, item 38). Nothing is allocated.
   template <int dim>
   SymmetricTensor<4, dim>
   positive_semidefinite_part(const SymmetricTensor<4, dim> &CC)
@@ -394,26 +400,27 @@ namespace SoftRobot
         pairs[a]  = {indices[0], indices[1]};
         weight[a] = (pairs[a].first == pairs[a].second) ? 1. : std::sqrt(2.);
       }
-    double M[n][n], V[n][n];
+    double T[n][n], Q[n][n], norm_square = 0.;
     for (unsigned int a = 0; a < n; ++a)
       for (unsigned int b = 0; b < n; ++b)
         {
-          M[a][b] = weight[a] * weight[b] *
+          T[a][b] = weight[a] * weight[b] *
                     CC[pairs[a].first][pairs[a].second][pairs[b].first]
                       [pairs[b].second];
-          V[a][b] = (a == b) ? 1. : 0.;
+          Q[a][b] = (a == b) ? 1. : 0.;
+          norm_square += T[a][b] * T[a][b];
         }
 
     // Most points are in a state where the tangent is positive definite,
     // and then it is its own positive part. A Cholesky factorization of M
-    // (a few dozen operations, against a few hundred per Jacobi sweep)
+    // (a few dozen operations, against a few thousand for the eigenvectors)
     // tells: it succeeds exactly when all eigenvalues are positive.
     {
       double L[n][n]           = {};
       bool   positive_definite = true;
       for (unsigned int j = 0; j < n && positive_definite; ++j)
         {
-          double pivot = M[j][j];
+          double pivot = T[j][j];
           for (unsigned int k = 0; k < j; ++k)
             pivot -= L[j][k] * L[j][k];
           if (!(pivot > 0.))
@@ -424,7 +431,7 @@ namespace SoftRobot
           L[j][j] = std::sqrt(pivot);
           for (unsigned int i = j + 1; i < n; ++i)
             {
-              double value = M[i][j];
+              double value = T[i][j];
               for (unsigned int k = 0; k < j; ++k)
                 value -= L[i][k] * L[j][k];
               L[i][j] = value / L[j][j];
@@ -434,54 +441,122 @@ namespace SoftRobot
         return CC;
     }
 
-    for (unsigned int sweep = 0; sweep < 50; ++sweep)
+    // The reflection $\mathbf H = \mathbf I - \beta\mathbf v\mathbf v^T$ of
+    // column k maps its part below the subdiagonal onto the subdiagonal:
+    // $\mathbf T \leftarrow \mathbf H\mathbf T\mathbf H = \mathbf T -
+    // \mathbf v\mathbf w^T - \mathbf w\mathbf v^T$ with $\mathbf w =
+    // \mathbf p - \frac12\beta(\mathbf v\cdot\mathbf p)\mathbf v$,
+    // $\mathbf p = \beta\mathbf T\mathbf v$; and $\mathbf Q \leftarrow
+    // \mathbf Q\mathbf H$.
+    for (unsigned int k = 0; k + 2 < n; ++k)
       {
-        double off_diagonal = 0., scale = 0.;
-        for (unsigned int a = 0; a < n; ++a)
-          for (unsigned int b = 0; b < n; ++b)
-            (a == b ? scale : off_diagonal) += M[a][b] * M[a][b];
-        if (off_diagonal <= 1e-30 * scale)
-          break;
-        for (unsigned int p = 0; p < n; ++p)
-          for (unsigned int q = p + 1; q < n; ++q)
-            if (M[p][q] != 0.)
-              {
-                // The rotation in the (p, q) plane that annihilates M[p][q].
-                const double theta = (M[q][q] - M[p][p]) / (2. * M[p][q]);
-                const double t =
-                  (theta >= 0. ? 1. : -1.) /
-                  (std::abs(theta) + std::sqrt(theta * theta + 1.));
-                const double c = 1. / std::sqrt(t * t + 1.), s = t * c;
-                for (unsigned int k = 0; k < n; ++k)
-                  {
-                    const double mkp = M[k][p], mkq = M[k][q];
-                    M[k][p] = c * mkp - s * mkq;
-                    M[k][q] = s * mkp + c * mkq;
-                  }
-                for (unsigned int k = 0; k < n; ++k)
-                  {
-                    const double mpk = M[p][k], mqk = M[q][k];
-                    M[p][k] = c * mpk - s * mqk;
-                    M[q][k] = s * mpk + c * mqk;
-                  }
-                for (unsigned int k = 0; k < n; ++k)
-                  {
-                    const double vkp = V[k][p], vkq = V[k][q];
-                    V[k][p] = c * vkp - s * vkq;
-                    V[k][q] = s * vkp + c * vkq;
-                  }
-              }
+        double v[n] = {}, below = 0.;
+        for (unsigned int i = k + 2; i < n; ++i)
+          {
+            v[i] = T[i][k];
+            below += v[i] * v[i];
+          }
+        if (!(below > 0.))
+          continue;
+        const double sub = T[k + 1][k];
+        const double alpha =
+          (sub > 0. ? -1. : 1.) * std::sqrt(below + sub * sub);
+        v[k + 1]          = sub - alpha;
+        const double beta = 2. / (below + v[k + 1] * v[k + 1]);
+        double       p[n] = {}, v_dot_p = 0.;
+        for (unsigned int i = k + 1; i < n; ++i)
+          {
+            for (unsigned int j = k + 1; j < n; ++j)
+              p[i] += T[i][j] * v[j];
+            p[i] *= beta;
+            v_dot_p += v[i] * p[i];
+          }
+        for (unsigned int i = k + 1; i < n; ++i)
+          p[i] -= 0.5 * beta * v_dot_p * v[i];
+        for (unsigned int i = k + 1; i < n; ++i)
+          for (unsigned int j = k + 1; j < n; ++j)
+            T[i][j] -= v[i] * p[j] + p[i] * v[j];
+        T[k + 1][k] = T[k][k + 1] = alpha;
+        for (unsigned int i = k + 2; i < n; ++i)
+          T[i][k] = T[k][i] = 0.;
+        for (unsigned int i = 0; i < n; ++i)
+          {
+            double q_dot_v = 0.;
+            for (unsigned int j = k + 1; j < n; ++j)
+              q_dot_v += Q[i][j] * v[j];
+            for (unsigned int j = k + 1; j < n; ++j)
+              Q[i][j] -= beta * q_dot_v * v[j];
+          }
       }
 
-    // Reassemble with the negative eigenvalues dropped.
+    // QR steps on the trailing unreduced block [l, m], each a chase of the
+    // bulge down the diagonal by rotations of rows and columns k and k + 1
+    // (only entries k - 1 to k + 2 of them are nonzero). A subdiagonal entry
+    // below 1e-16 of the matrix's norm is set to zero: its eigenvalues then
+    // have all the digits the matrix has.
+    const double tolerance = 1e-16 * std::sqrt(norm_square);
+    for (unsigned int m = n - 1, steps = 0; m > 0 && steps < 30 * n;)
+      {
+        if (std::abs(T[m][m - 1]) <= tolerance)
+          {
+            T[m][m - 1] = T[m - 1][m] = 0.;
+            --m;
+            continue;
+          }
+        unsigned int l = m - 1;
+        while (l > 0 && std::abs(T[l][l - 1]) > tolerance)
+          --l;
+        ++steps;
+        // Wilkinson's shift: the eigenvalue of the trailing 2 x 2 block
+        // nearer to its last diagonal entry.
+        const double delta = 0.5 * (T[m - 1][m - 1] - T[m][m]);
+        const double e2    = T[m][m - 1] * T[m][m - 1];
+        const double shift =
+          T[m][m] - e2 / (delta + (delta >= 0. ? 1. : -1.) *
+                                    std::sqrt(delta * delta + e2));
+        double x = T[l][l] - shift, z = T[l + 1][l];
+        for (unsigned int k = l; k < m; ++k)
+          {
+            const double       r = std::sqrt(x * x + z * z);
+            const double       c = x / r, s = z / r;
+            const unsigned int first = (k > l) ? k - 1 : l;
+            const unsigned int last  = std::min(k + 2, m);
+            for (unsigned int j = first; j <= last; ++j)
+              {
+                const double a = T[k][j], b = T[k + 1][j];
+                T[k][j]     = c * a + s * b;
+                T[k + 1][j] = c * b - s * a;
+              }
+            for (unsigned int i = first; i <= last; ++i)
+              {
+                const double a = T[i][k], b = T[i][k + 1];
+                T[i][k]     = c * a + s * b;
+                T[i][k + 1] = c * b - s * a;
+              }
+            for (unsigned int i = 0; i < n; ++i)
+              {
+                const double a = Q[i][k], b = Q[i][k + 1];
+                Q[i][k]     = c * a + s * b;
+                Q[i][k + 1] = c * b - s * a;
+              }
+            if (k + 1 < m)
+              {
+                x = T[k + 1][k];
+                z = T[k + 2][k];
+              }
+          }
+      }
+
+    // Reassemble with the negative eigenvalues dropped: the eigenvectors
+    // are the columns of Q.
     SymmetricTensor<4, dim> positive;
     for (unsigned int a = 0; a < n; ++a)
       for (unsigned int b = 0; b < n; ++b)
         {
           double value = 0.;
           for (unsigned int k = 0; k < n; ++k)
-            if (M[k][k] > 0.)
-              value += V[a][k] * M[k][k] * V[b][k];
+            if (T[k][k] > 0.)
+              value += Q[a][k] * T[k][k] * Q[b][k];
           positive[pairs[a].first][pairs[a].second][pairs[b].first]
                   [pairs[b].second] = value / (weight[a] * weight[b]);
         }

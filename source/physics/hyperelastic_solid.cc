@@ -171,11 +171,12 @@ namespace SoftRobot
       projection.project(cell, result.inverse_gram, workspace.point_pressure);
     for (unsigned int q = 0; q < n_q; ++q)
       workspace.point_pressure[q] = projection.value(q, pressure);
-    result.stiffness =
-      projection.weighted_stiffness(cell,
-                                    result.inverse_gram,
-                                    workspace.point_volumetric_stiffness);
-    if (local.request.matrix || viscous_cell(local))
+    if (local.request.matrix)
+      result.stiffness =
+        projection.weighted_stiffness(cell,
+                                      result.inverse_gram,
+                                      workspace.point_volumetric_stiffness);
+    if (needs_volume_gradients(local))
       workspace.volume_gradients.reinit(projection.n_modes(),
                                         geometry.dofs_per_cell);
     return result;
@@ -235,7 +236,7 @@ namespace SoftRobot
       law.evaluate_stress(H, response);
     local.strain_energy += response.energy * JxW;
 
-    if (projected && (with_matrix || viscous_cell(local)))
+    if (projected && needs_volume_gradients(local))
       {
         const unsigned int n_modes = projection.n_modes();
         typename DilatationProjection<dim>::ModeVector w;
@@ -370,12 +371,11 @@ namespace SoftRobot
             rate[q] =
               scalar_product(cofactor, local.workspace.velocity_gradients[q]);
           }
-        dilatation.viscous_pressure =
-          viscous->volumetric_viscosity(projection,
-                                        dilatation.inverse_gram,
-                                        rate,
-                                        local,
-                                        dilatation.viscous_stiffness);
+        viscous->volumetric_viscosity(projection,
+                                      dilatation.inverse_gram,
+                                      rate,
+                                      local,
+                                      dilatation.viscous_stiffness);
       }
     MaterialResponse<dim> response;
     for (unsigned int q = 0; q < geometry.n_q_points; ++q)
@@ -383,7 +383,6 @@ namespace SoftRobot
 
     if (projected && viscous_cell(local) && !local.inverted)
       viscous->add_volumetric_contribution(projection.n_modes(),
-                                           dilatation.viscous_pressure,
                                            dilatation.viscous_stiffness,
                                            local);
     if (!local.request.matrix)

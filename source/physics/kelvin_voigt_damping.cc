@@ -64,7 +64,15 @@ namespace SoftRobot
     const Tensor<2, dim>         &L     = *point.L;
     const SymmetricTensor<2, dim> E_dot = symmetrize(transpose(F) * L);
     const SymmetricTensor<2, dim> S_v   = zeta * (D * E_dot);
-    const Tensor<2, dim>          P_v   = F * S_v;
+    Tensor<2, dim>                P_v   = F * S_v;
+    // The volumetric viscous force $\mathbf G^T\boldsymbol\pi_v$ is the
+    // integral of $p_v\,\mathrm{cof}\,\mathbf F:\nabla_0\delta\mathbf
+    // u$, since $p_v = \mathbf N\cdot\boldsymbol\pi_v$ at the point: it
+    // joins the point's stress, and $\mathbf G$ is formed only for the
+    // matrices.
+    if constexpr (dim == 3)
+      if (point.volume_pressure != 0.)
+        P_v += (point.volume_pressure * determinant(F)) * transpose(invert(F));
     for (unsigned int i = 0; i < n; ++i)
       local.second_force(i) += (P_v[comp[i]] * grad_phi[i]) * JxW;
 
@@ -110,7 +118,7 @@ namespace SoftRobot
 
   // @sect4{KelvinVoigtDamping::volumetric_viscosity}
   template <int dim>
-  typename DilatationProjection<dim>::ModeVector
+  void
   KelvinVoigtDamping<dim>::volumetric_viscosity(
     const DilatationProjection<dim>                      &projection,
     const typename DilatationProjection<dim>::ModeMatrix &inverse_gram,
@@ -139,8 +147,8 @@ namespace SoftRobot
     const auto coefficients = projection.project(cell, inverse_gram, stress);
     for (unsigned int q = 0; q < n_q; ++q)
       stress[q] = projection.value(q, coefficients);
-    stiffness = projection.weighted_stiffness(cell, inverse_gram, viscosity);
-    return coefficients;
+    if (local.request.matrix || local.request.second_matrix)
+      stiffness = projection.weighted_stiffness(cell, inverse_gram, viscosity);
   }
 
 
@@ -150,20 +158,15 @@ namespace SoftRobot
   void
   KelvinVoigtDamping<dim>::add_volumetric_contribution(
     const unsigned int                                    n_modes,
-    const typename DilatationProjection<dim>::ModeVector &coefficients,
     const typename DilatationProjection<dim>::ModeMatrix &stiffness,
     CellContribution<dim>                                &local) const
   {
     if (!(cell_zeta[local.cell] > 0.))
       return;
-    const unsigned int        n = geometry.dofs_per_cell;
-    const FullMatrix<double> &G = local.workspace.volume_gradients;
-    for (unsigned int m = 0; m < n_modes; ++m)
-      for (unsigned int i = 0; i < n; ++i)
-        local.second_force(i) += coefficients[m] * G(m, i);
-
-    const bool with_matrix  = local.request.matrix;
-    const bool with_damping = local.request.second_matrix;
+    const unsigned int        n            = geometry.dofs_per_cell;
+    const FullMatrix<double> &G            = local.workspace.volume_gradients;
+    const bool                with_matrix  = local.request.matrix;
+    const bool                with_damping = local.request.second_matrix;
     if (!with_matrix && !with_damping)
       return;
     // The lower triangle of $\mathbf G^T\mathbf A_v\mathbf G$.
