@@ -625,6 +625,29 @@ TYPED_TEST(NeoHookeanEnergyTest, PositiveSemidefinitePartOfTangent)
   EXPECT_LT((small - response.material_tangent).norm(),
             1e-12 * response.material_tangent.norm());
 
+  // A tangent that is diagonal in Mandel's notation, with eigenvalues of
+  // both signs: the positive ones are kept, the others dropped, exactly
+  // (no reduction or rotation is needed); the zero tangent stays zero.
+  {
+    SymmetricTensor<4, dim> diagonal, expected;
+    for (unsigned int a = 0;
+         a < SymmetricTensor<2, dim>::n_independent_components;
+         ++a)
+      {
+        const TableIndices<2> ij =
+          SymmetricTensor<2, dim>::unrolled_to_component_indices(a);
+        const double value                   = (a % 2 == 0) ? -1. - a : 2. + a;
+        diagonal[ij[0]][ij[1]][ij[0]][ij[1]] = value;
+        expected[ij[0]][ij[1]][ij[0]][ij[1]] = std::max(value, 0.);
+      }
+    EXPECT_LT(
+      (SoftRobot::positive_semidefinite_part(diagonal) - expected).norm(),
+      1e-14 * diagonal.norm());
+    EXPECT_EQ(
+      SoftRobot::positive_semidefinite_part(SymmetricTensor<4, dim>()).norm(),
+      0.);
+  }
+
   bool found_indefinite = false;
   for (const double stretch : {0.25, 0.5, 2., 3., 4.})
     for (const Tensor<2, dim> &R : random_deformation_gradients<dim>(5, 11))
