@@ -400,16 +400,12 @@ namespace SoftRobot
         pairs[a]  = {indices[0], indices[1]};
         weight[a] = (pairs[a].first == pairs[a].second) ? 1. : std::sqrt(2.);
       }
-    double T[n][n], Q[n][n], norm_square = 0.;
+    double T[n][n], Q[n][n];
     for (unsigned int a = 0; a < n; ++a)
       for (unsigned int b = 0; b < n; ++b)
-        {
-          T[a][b] = weight[a] * weight[b] *
-                    CC[pairs[a].first][pairs[a].second][pairs[b].first]
-                      [pairs[b].second];
-          Q[a][b] = (a == b) ? 1. : 0.;
-          norm_square += T[a][b] * T[a][b];
-        }
+        T[a][b] =
+          weight[a] * weight[b] *
+          CC[pairs[a].first][pairs[a].second][pairs[b].first][pairs[b].second];
 
     // Most points are in a state where the tangent is positive definite,
     // and then it is its own positive part. A Cholesky factorization of M
@@ -440,6 +436,14 @@ namespace SoftRobot
       if (positive_definite)
         return CC;
     }
+    // Otherwise the eigenvectors, from Q = I.
+    double norm_square = 0.;
+    for (unsigned int a = 0; a < n; ++a)
+      for (unsigned int b = 0; b < n; ++b)
+        {
+          norm_square += T[a][b] * T[a][b];
+          Q[a][b] = (a == b) ? 1. : 0.;
+        }
 
     // The reflection $\mathbf H = \mathbf I - \beta\mathbf v\mathbf v^T$ of
     // column k maps its part below the subdiagonal onto the subdiagonal:
@@ -491,9 +495,11 @@ namespace SoftRobot
 
     // QR steps on the trailing unreduced block [l, m], each a chase of the
     // bulge down the diagonal by rotations of rows and columns k and k + 1
-    // (only entries k - 1 to k + 2 of them are nonzero). A subdiagonal entry
-    // below 1e-16 of the matrix's norm is set to zero: its eigenvalues then
-    // have all the digits the matrix has.
+    // (only entries k - 1 to k + 2 of them are nonzero; r > 0, since z is
+    // first a subdiagonal entry of the unreduced block and then the bulge,
+    // s times the next one). A subdiagonal entry below 1e-16 of the
+    // matrix's norm is set to zero: its eigenvalues then have all the
+    // digits the matrix has.
     const double tolerance = 1e-16 * std::sqrt(norm_square);
     for (unsigned int m = n - 1, steps = 0; m > 0 && steps < 30 * n;)
       {
