@@ -53,6 +53,28 @@ namespace SoftRobot
 
 
 
+  // @sect4{A cell matrix by shape functions}
+  //
+  // The storage of physics/point_tangent.h: the cell matrix ordered by
+  // shape functions, and the factors of the points added since it was
+  // last brought up to date, which are multiplied out together.
+  struct TangentBlock
+  {
+    // Entry ((a dim + c) dim + k) stride + b for the pair of shape
+    // functions (a, b) and the components (c, k); stride >= the number of
+    // shape functions.
+    std::vector<double> values;
+    unsigned int        stride = 0;
+    // The points' factors: [a][(point, J)] and [(point, J)][(c, k, b)].
+    std::vector<double> left;
+    std::vector<double> right;
+    unsigned int        pending_points = 0;
+    // Whether the points added so far are symmetric (only b <= a is kept).
+    bool symmetric = false;
+  };
+
+
+
   // @sect4{The work space of one thread}
   //
   // Arrays that the integral over a cell needs per shape function or per
@@ -86,8 +108,8 @@ namespace SoftRobot
     // The points' shares of the tangent and of the damping matrix, by
     // shape functions (see physics/point_tangent.h), added in full after
     // the symmetric part has been completed from its lower triangle.
-    std::vector<double> tangent_block;
-    std::vector<double> damping_block;
+    TangentBlock tangent_block;
+    TangentBlock damping_block;
     // The non-symmetric part of a cell matrix, added in full after the
     // symmetric part has been completed from its lower triangle.
     FullMatrix<double> nonsymmetric_matrix;

@@ -16,22 +16,37 @@
 // C_{IJKL}\,F_{kK} + \delta_{ck}S_{JL}$ (the derivative of the first
 // Piola-Kirchhoff stress), and the viscous and volumetric terms of
 // KelvinVoigtDamping have the same form. The point therefore first sums
-// its terms into $\mathcal A$ (81 numbers in 3D) and then adds the double
-// sum once for all pairs of shape functions, node by node: for each
-// $\varphi_a$ the contraction $W_{ckL} = \sum_J\partial_J\varphi_a
-// \mathcal A_{cJkL}$, then for each $\varphi_b$ the $3\times3$ block
-// $\sum_L W_{ckL}\partial_L\varphi_b$, accumulated per cell in a matrix
-// ordered by shape functions and added to the cell matrix once. For
-// quadratic hexahedra that is 6,561 multiply-adds per point, in loops the
-// compiler vectorizes, where forming each pair's strain variations and
-// their products took several times as many
-// (doc/performance_discussion.md).
+// its terms into $\mathcal A$ (81 numbers in 3D).
+//
+// Summed over the points $q$ of a cell, with the pair $(q, J)$ of point
+// and direction as one index, the block of the components $(c, k)$ is a
+// matrix product:
+// @f[
+//   K^{ck}_{ab} = \sum_{(q,J)} \partial_J\varphi_a(\mathbf x_q)\;
+//   Y_{(q,J),(c,k,b)}, \qquad
+//   Y_{(q,J),(c,k,b)} = w_q\sum_L \mathcal A^q_{cJkL}\,
+//   \partial_L\varphi_b(\mathbf x_q),
+// @f]
+// of the $n\times d\,n_q$ matrix of the shape functions' gradients with
+// the $d\,n_q\times d^2 n$ matrix $\mathbf Y$, for $n$ shape functions,
+// $n_q$ points and dimension $d$. Each point adds its $d$ rows of
+// $\mathbf Y$ ($d^3 n$ multiply-adds) and its $d$ columns of gradients to
+// a buffer; the product is formed when the block is read (or the buffer is
+// full), in loops that keep a tile of the result in vector registers. For
+// quadratic hexahedra that is $n^2 d^3 n_q$ = 531,441 multiply-adds per
+// cell, as many as adding each point's share to all $n^2 d^2$ entries of
+// the block in turn; but that way each entry was loaded and stored once
+// per point for three multiply-adds, while the product keeps a tile of
+// entries in registers over all points (doc/performance_discussion.md,
+// item 39, has the times). A symmetric $\mathcal A$ needs only the pairs
+// $b \le a$: about half the product.
 //
 // Implemented in source/physics/point_tangent.cc.
 
 #ifndef soft_robot_physics_point_tangent_h
 #define soft_robot_physics_point_tangent_h
 
+#include <assembly/cell_contribution.h>
 #include <deal.II/base/symmetric_tensor.h>
 #include <deal.II/base/tensor.h>
 #include <deal.II/lac/full_matrix.h>
@@ -77,14 +92,12 @@ namespace SoftRobot
     general
   };
 
-  // The point's share $\sum_{J,L}\partial_J\varphi_a\mathcal
-  // A_{cJkL}\partial_L\varphi_b\,w$ of every pair of shape functions,
-  // `grad_phi` being the gradients of the cell's shape functions at the
-  // point (indexed by dof), added to `block`, the cell's matrix by shape
-  // functions: entry ((a dim + c) dim + k) n + b for n shape functions
-  // (resized and zeroed by the caller, see reset_tangent_block()). All pairs
-  // are formed (with Symmetry::symmetric those with b <= a), in loops over
-  // b that the compiler vectorizes.
+  // Adds the point's share $\sum_{J,L}\partial_J\varphi_a\mathcal
+  // A_{cJkL}\partial_L\varphi_b\,w$ of every pair of shape functions to
+  // `block` (set up by reset_tangent_block()), `grad_phi` being the
+  // gradients of the cell's shape functions at the point (indexed by dof).
+  // All points of a block must have the same symmetry; with
+  // Symmetry::symmetric only the pairs b <= a are formed.
   template <int dim>
   void
   add_point_tangent(const CellGeometry<dim> &geometry,
@@ -92,22 +105,23 @@ namespace SoftRobot
                     const Tensor<4, dim>    &A,
                     const double             weight,
                     const Symmetry           symmetry,
-                    std::vector<double>     &block);
+                    TangentBlock            &block);
 
-  // A block of the cell's size, zero.
+  // A block of the cell's size, zero, with room for the factors of all of
+  // the cell's points.
   template <int dim>
   void
-  reset_tangent_block(const CellGeometry<dim> &geometry,
-                      std::vector<double>     &block);
+  reset_tangent_block(const CellGeometry<dim> &geometry, TangentBlock &block);
 
   // Adds a block to the cell matrix in dof numbering, all of it; a
-  // symmetric block's pairs b > a from their transposes.
+  // symmetric block's pairs b > a from their transposes. Multiplies out
+  // the points added since the last call first.
   template <int dim>
   void
-  add_tangent_block(const CellGeometry<dim>   &geometry,
-                    const std::vector<double> &block,
-                    const Symmetry             symmetry,
-                    FullMatrix<double>        &matrix);
+  add_tangent_block(const CellGeometry<dim> &geometry,
+                    TangentBlock            &block,
+                    const Symmetry           symmetry,
+                    FullMatrix<double>      &matrix);
 } // namespace SoftRobot
 
 #endif

@@ -1,0 +1,179 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
+
+// @sect3{A cell matrix by shape functions is the sum of its points' shares}
+//
+// physics/point_tangent.h forms a cell's matrix
+// $K_{(a,c),(b,k)} = \sum_q w_q\sum_{J,L}\partial_J\varphi_a(\mathbf x_q)
+// \,\mathcal A^q_{cJkL}\,\partial_L\varphi_b(\mathbf x_q)$ as one matrix
+// product over all points, in register tiles with padded rows. The test
+// adds random points (random gradients, a random tensor per point, random
+// weights) and compares every entry of the matrix that add_tangent_block()
+// writes with the sum over the points formed directly in long double:
+// - in 1D, 2D and 3D, with the quadratic element's number of shape
+//   functions ($3^d$), so that the rows and columns are not multiples of
+//   the tiles' sizes;
+// - for a general tensor, and for one with the major symmetry $\mathcal
+//   A_{cJkL} = \mathcal A_{kLcJ}$, of which only the pairs $b \le a$ are
+//   formed and the others taken from their transposes;
+// - with as many points as the cell has, with fewer (the buffer is then
+//   packed before the product), and with more (the product is then formed
+//   twice);
+// - with shape functions numbered across the components in an order other
+//   than the blocks' (`shape_dofs` reversed).
+//
+// The tolerance is that of a sum of $m = d^2 n_q$ products of four
+// factors, in any order: $\gamma_{m+3}\sum|x|$ per entry, with $\gamma_m =
+// mu/(1 - mu)$ and $u = 2^{-53}$ (Higham, Accuracy and Stability of
+// Numerical Algorithms, section 3.1), the sum of absolute values formed
+// alongside. The symmetric case's entries b > a are those of the
+// transposed pair, and must equal the directly formed sum as closely.
+
+#include "solver_test_tools.h"
+
+#include <deal.II/base/tensor.h>
+#include <deal.II/lac/full_matrix.h>
+#include <gtest/gtest.h>
+#include <limits>
+#include <physics/point_tangent.h>
+#include <random>
+
+using namespace dealii;
+using namespace SoftRobot;
+using namespace SoftRobot::Testing;
+
+template <typename T>
+class PointTangentTest : public ::testing::Test
+{
+};
+TYPED_TEST_SUITE(PointTangentTest, Dimensions);
+
+namespace
+{
+  template <int dim>
+  struct RandomPoint
+  {
+    std::vector<Tensor<1, dim>> gradients; // by dof
+    Tensor<4, dim>              A;
+    double                      weight;
+  };
+
+  // Adds `n_points` random points to a block of a cell with `n_q` points
+  // and compares the block with the direct sum; returns the largest ratio
+  // of difference to tolerance.
+  template <int dim>
+  double
+  largest_error_ratio(const unsigned int n_q,
+                      const unsigned int n_points,
+                      const Symmetry     symmetry,
+                      std::mt19937      &rng)
+  {
+    unsigned int n = 1;
+    for (unsigned int d = 0; d < dim; ++d)
+      n *= 3;
+    CellGeometry<dim> geometry;
+    geometry.n_shape_functions = n;
+    geometry.dofs_per_cell     = n * dim;
+    geometry.n_q_points        = n_q;
+    geometry.shape_dofs.resize(n * dim);
+    for (unsigned int i = 0; i < n * dim; ++i)
+      geometry.shape_dofs[i] = n * dim - 1 - i;
+
+    std::uniform_real_distribution<double> uniform(-1., 1.);
+    std::vector<RandomPoint<dim>>          points(n_points);
+    for (RandomPoint<dim> &point : points)
+      {
+        point.gradients.resize(n * dim);
+        // A shape function's gradient is the same for all its components.
+        for (unsigned int a = 0; a < n; ++a)
+          {
+            Tensor<1, dim> g;
+            for (unsigned int d = 0; d < dim; ++d)
+              g[d] = uniform(rng);
+            for (unsigned int c = 0; c < dim; ++c)
+              point.gradients[geometry.shape_dofs[a * dim + c]] = g;
+          }
+        for (unsigned int c = 0; c < dim; ++c)
+          for (unsigned int J = 0; J < dim; ++J)
+            for (unsigned int k = 0; k < dim; ++k)
+              for (unsigned int L = 0; L < dim; ++L)
+                point.A[c][J][k][L] = uniform(rng);
+        if (symmetry == Symmetry::symmetric)
+          for (unsigned int c = 0; c < dim; ++c)
+            for (unsigned int J = 0; J < dim; ++J)
+              for (unsigned int k = 0; k < dim; ++k)
+                for (unsigned int L = 0; L < dim; ++L)
+                  point.A[k][L][c][J] = point.A[c][J][k][L];
+        point.weight = 0.5 + 0.5 * uniform(rng);
+      }
+
+    TangentBlock block;
+    reset_tangent_block(geometry, block);
+    for (const RandomPoint<dim> &point : points)
+      add_point_tangent(geometry,
+                        point.gradients.data(),
+                        point.A,
+                        point.weight,
+                        symmetry,
+                        block);
+    FullMatrix<double> matrix(n * dim, n * dim);
+    add_tangent_block(geometry, block, symmetry, matrix);
+
+    const double u     = 0.5 * std::numeric_limits<double>::epsilon();
+    const double m     = dim * dim * n_points + 3;
+    const double gamma = m * u / (1. - m * u);
+    double       worst = 0.;
+    for (unsigned int a = 0; a < n; ++a)
+      for (unsigned int c = 0; c < dim; ++c)
+        for (unsigned int b = 0; b < n; ++b)
+          for (unsigned int k = 0; k < dim; ++k)
+            {
+              long double sum = 0., magnitude = 0.;
+              for (const RandomPoint<dim> &point : points)
+                {
+                  const Tensor<1, dim> &ga =
+                    point.gradients[geometry.shape_dofs[a * dim + c]];
+                  const Tensor<1, dim> &gb =
+                    point.gradients[geometry.shape_dofs[b * dim + k]];
+                  for (unsigned int J = 0; J < dim; ++J)
+                    for (unsigned int L = 0; L < dim; ++L)
+                      {
+                        const long double term =
+                          static_cast<long double>(ga[J]) *
+                          point.A[c][J][k][L] * gb[L] * point.weight;
+                        sum += term;
+                        magnitude += std::abs(term);
+                      }
+                }
+              const double value     = matrix(geometry.shape_dofs[a * dim + c],
+                                          geometry.shape_dofs[b * dim + k]);
+              const double tolerance = gamma * static_cast<double>(magnitude);
+              worst                  = std::max(worst,
+                               std::abs(value - static_cast<double>(sum)) /
+                                 tolerance);
+            }
+    return worst;
+  }
+} // namespace
+
+
+
+TYPED_TEST(PointTangentTest, CellProductEqualsTheSumOverPoints)
+{
+  constexpr int dim = TypeParam::value;
+  std::mt19937  rng(2024 + dim);
+  unsigned int  n_q = 1;
+  for (unsigned int d = 0; d < dim; ++d)
+    n_q *= 3;
+  for (const Symmetry symmetry : {Symmetry::general, Symmetry::symmetric})
+    for (const unsigned int n_points : {n_q, n_q - 1, 2 * n_q + 1})
+      {
+        const double ratio =
+          largest_error_ratio<dim>(n_q, n_points, symmetry, rng);
+        std::cout << dim << "D, "
+                  << (symmetry == Symmetry::symmetric ? "symmetric" : "general")
+                  << ", " << n_points << " points of a cell of " << n_q
+                  << ": largest difference / tolerance = " << ratio
+                  << std::endl;
+        EXPECT_LE(ratio, 1.) << dim << "D, " << n_points << " points";
+      }
+}
