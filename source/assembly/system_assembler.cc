@@ -79,6 +79,14 @@ namespace SoftRobot
       {
         std::vector<unsigned int> cells(geometry.n_cells);
         std::iota(cells.begin(), cells.end(), 0U);
+        // The threads take the cells in chunks; while the last chunk runs,
+        // the other threads have nothing left to do. Sixteen chunks per
+        // thread keep that wait short on the few hundred expensive cells of
+        // the quadratic meshes; on the thousands of cheap cells of the
+        // linear ones, chunks of at most 64 cells keep the overhead per
+        // chunk small (doc/performance_discussion.md, item 39).
+        const unsigned int chunk_size = std::clamp<unsigned int>(
+          geometry.n_cells / (16 * MultithreadInfo::n_threads()), 1, 64);
         WorkStream::run(
           cells.data(),
           cells.data() + cells.size(),
@@ -94,7 +102,7 @@ namespace SoftRobot
           NoScratch(),
           prototype,
           2 * MultithreadInfo::n_threads(),
-          64);
+          chunk_size);
       }
     else
       assemble_residual(integrate, prototype, cell_values, targets, result);
