@@ -38,6 +38,7 @@
 #ifndef soft_robot_assembly_direct_address_assembler_h
 #define soft_robot_assembly_direct_address_assembler_h
 
+#include <array>
 #include <assembly/system_assembler.h>
 #include <memory>
 
@@ -148,6 +149,15 @@ namespace SoftRobot
     std::unique_ptr<Epetra_Import> ghost_import;
     std::unique_ptr<Epetra_Vector> ghost_values, ghost_force,
       ghost_second_force;
+
+    // In serial runs the force vectors of an assembly with matrices are
+    // summed as assemble_residual() sums them: in the two halves of the
+    // cells, each in the order of its cells, and the halves then added in
+    // turn. A state's forces are then the same bits whether its matrices
+    // were assembled with them or not (a restart assembles the state with
+    // its matrix where the run did without).
+    std::array<std::vector<double>, 2> half_force, half_second_force;
+    bool                               forces_in_halves = false;
 
     // The value arrays of the targets during an assembly.
     double *matrix_values        = nullptr;

@@ -260,6 +260,15 @@ namespace SoftRobot
     force_values = targets.force->trilinos_vector()[0];
     if (request.second_force)
       second_force_values = targets.second_force->trilinos_vector()[0];
+    forces_in_halves = serial && request.matrix;
+    if (forces_in_halves)
+      for (unsigned int half = 0; half < 2; ++half)
+        {
+          half_force[half].assign(targets.force->locally_owned_size(), 0.);
+          if (request.second_force)
+            half_second_force[half].assign(targets.force->locally_owned_size(),
+                                           0.);
+        }
     if (!serial)
       {
         ghost_force->PutScalar(0.);
@@ -353,12 +362,27 @@ namespace SoftRobot
     const CellContribution<dim>                  &local,
     const typename SystemAssembler<dim>::Targets &targets)
   {
-    add_vector(local, local.force, force_values, ghost_force.get());
-    if (local.request.second_force)
-      add_vector(local,
-                 local.second_force,
-                 second_force_values,
-                 ghost_second_force.get());
+    if (forces_in_halves)
+      {
+        // The halves of assemble_residual().
+        const unsigned int half =
+          (local.cell < this->geometry.n_cells / 2) ? 0 : 1;
+        add_vector(local, local.force, half_force[half].data(), nullptr);
+        if (local.request.second_force)
+          add_vector(local,
+                     local.second_force,
+                     half_second_force[half].data(),
+                     nullptr);
+      }
+    else
+      {
+        add_vector(local, local.force, force_values, ghost_force.get());
+        if (local.request.second_force)
+          add_vector(local,
+                     local.second_force,
+                     second_force_values,
+                     ghost_second_force.get());
+      }
     if (local.request.matrix)
       add_matrix(local, local.matrix, matrix_values, *targets.matrix);
     if (local.request.second_matrix)
@@ -386,6 +410,18 @@ namespace SoftRobot
       targets.matrix->compress(VectorOperation::add);
     if (request.second_matrix)
       targets.second_matrix->compress(VectorOperation::add);
+    if (forces_in_halves)
+      {
+        const unsigned int n_values = targets.force->locally_owned_size();
+        for (unsigned int half = 0; half < 2; ++half)
+          {
+            for (unsigned int k = 0; k < n_values; ++k)
+              force_values[k] += half_force[half][k];
+            if (request.second_force)
+              for (unsigned int k = 0; k < n_values; ++k)
+                second_force_values[k] += half_second_force[half][k];
+          }
+      }
     if (serial)
       return;
     const int error =
