@@ -62,7 +62,7 @@ cd "$(dirname "$0")"
 # OpenBLAS in place of Debian's reference BLAS: MUMPS's dense frontal
 # matrices run on it (see Linear solver/Direct solver); KLU does not use BLAS.
 packages=(cmake make g++ libdeal.ii-dev libfftw3-dev liblapack-dev libopenblas0-serial
-          libgtest-dev nlohmann-json3-dev)
+          libmumps-dev libgtest-dev nlohmann-json3-dev)
 
 install_missing_packages() {
   local missing=()

@@ -40,7 +40,8 @@ _SOLVER = ["Time integration/Time step=0.005",
 _TETRAHEDRA = _SILICONES + _SOLVER + [
     "Geometry/Mesh source=file",
     "Finite element/Polynomial degree=1",
-    "Finite element/Volumetric formulation=displacement"]
+    "Finite element/Volumetric formulation=displacement",
+    "Linear solver/Symmetric factorization=false"]
 # The 1D and 2D scenes: the sections and the geometry that `calibrate
 # reduced-models` computed from the linear tetrahedra are the scene's; the
 # column's cells along the axis (mm) are those of every reduced scene.

@@ -797,6 +797,98 @@ TYPED_TEST(LinearSolverTest, SingularMatrixFailsTheStep)
 
 
 
+// @sect4{The symmetric factorization}
+//
+// With `Symmetric factorization` MUMPS factorizes $(\mathbf A + \mathbf
+// A^T)/2$ from its lower triangle (SymmetricFactorization, one process;
+// on several the solver is Amesos' MUMPS). On the body's symmetric
+// matrix it solves to round-off, leaves the matrix and the right-hand side
+// alone, and reuses its analysis for a second matrix in the same object,
+// $\mathbf K + 256c\,\mathbf M$. Given $\mathbf A + \mathbf N$ with an
+// antisymmetric $\mathbf N$ (one pair of entries $\pm0.3 a_{ii}$ at the
+// centre), it solves with $\mathbf A$, the symmetric part. A singular
+// matrix (the centre's row and column zero) throws StepFailure, and the
+// solver recovers with the regular matrix.
+TYPED_TEST(LinearSolverTest, SymmetricFactorizationSolvesTheSymmetricPart)
+{
+  constexpr int          dim = TypeParam::value;
+  const ElasticBody<dim> body(multilevel_cells[dim - 1]);
+  const bool             serial =
+    dealii::Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD) == 1;
+  Parameters::LinearSolver parameters =
+    solver_parameters(SolverType::direct, DirectType::mumps);
+  parameters.symmetric_factorization = true;
+  EXPECT_EQ(LinearSolver::needs_symmetric_matrix(parameters,
+                                                 body.owned_dofs.size(),
+                                                 MPI_COMM_WORLD),
+            serial);
+  LinearSolver solver(parameters, 1, MPI_COMM_WORLD, this->timer);
+
+  TrilinosWrappers::SparseMatrix matrix, matrix_before;
+  body.set_matrix(body.mass_factor(), matrix);
+  matrix_before.copy_from(matrix);
+  const TrilinosWrappers::MPI::Vector rhs = body.right_hand_side();
+  const TrilinosWrappers::MPI::Vector rhs_before(rhs);
+  TrilinosWrappers::MPI::Vector       solution(body.owned_dofs, MPI_COMM_WORLD);
+  solver.prepare(matrix);
+  EXPECT_EQ(solver.solver_in_use(),
+            serial ? "MUMPS symmetric" : "Amesos_Mumps");
+  solver.solve(rhs, solution);
+  const double residual = relative_residual(matrix, solution, rhs);
+  EXPECT_LT(residual, 1e-12);
+  EXPECT_EQ(max_difference(matrix, matrix_before), 0.);
+  EXPECT_EQ(relative_difference(rhs, rhs_before), 0.);
+
+  body.set_matrix(256. * body.mass_factor(), matrix);
+  solver.prepare(matrix);
+  solver.solve(rhs, solution);
+  const double second_residual = relative_residual(matrix, solution, rhs);
+  EXPECT_LT(second_residual, 1e-12);
+
+  double antisymmetric_residual = 0.;
+  if (serial)
+    {
+      // The centre's unknown and a neighbour it is coupled to.
+      body.set_matrix(body.mass_factor(), matrix);
+      const types::global_dof_index i = body.centre_dof(0);
+      const double                  a = matrix.el(i, i);
+      types::global_dof_index       j = i;
+      for (auto entry = matrix.begin(i); entry != matrix.end(i); ++entry)
+        if (entry->column() != i)
+          j = entry->column();
+      ASSERT_NE(i, j);
+      TrilinosWrappers::SparseMatrix perturbed;
+      perturbed.copy_from(matrix);
+      perturbed.set(i, j, matrix.el(i, j) + 0.3 * a);
+      perturbed.set(j, i, matrix.el(j, i) - 0.3 * a);
+      perturbed.compress(VectorOperation::insert);
+      solver.prepare(perturbed);
+      solver.solve(rhs, solution);
+      antisymmetric_residual = relative_residual(matrix, solution, rhs);
+      EXPECT_LT(antisymmetric_residual, 1e-12);
+      EXPECT_GT(relative_residual(perturbed, solution, rhs), 1e-6);
+
+      // The centre's row and column zero: singular.
+      TrilinosWrappers::SparseMatrix singular;
+      singular.copy_from(matrix);
+      set_row(singular, i, [](const auto) { return 0.; });
+      for (auto entry = matrix.begin(i); entry != matrix.end(i); ++entry)
+        singular.set(entry->column(), i, 0.);
+      singular.compress(VectorOperation::insert);
+      solver.prepare(matrix);
+      EXPECT_THROW(solver.prepare(singular), StepFailure);
+      solver.prepare(matrix);
+      solver.solve(rhs, solution);
+      EXPECT_LT(relative_residual(matrix, solution, rhs), 1e-12);
+    }
+  this->log << processes_prefix() << dim << "D " << solver.solver_in_use()
+            << ": relative residuals " << residual << ", " << second_residual
+            << "; of the symmetric part of a non-symmetric matrix "
+            << antisymmetric_residual << std::endl;
+}
+
+
+
 // @sect4{The iterative solvers}
 //
 // CG and GMRES with multigrid stop at the relative tolerance
@@ -1218,6 +1310,8 @@ TYPED_TEST(LinearSolverTest, OperatorComplexityIsML)
 //
 // The solver reports the name it gave to Amesos' factory; that is the
 // class of the object the factory creates, which is checked here directly.
+// The symmetric factorization, which is not Amesos', is "MUMPS
+// symmetric" (on one process).
 // Before the first prepare() all names are empty.
 TYPED_TEST(LinearSolverTest, SolverNamesAreTheSolversInUse)
 {
@@ -1226,11 +1320,19 @@ TYPED_TEST(LinearSolverTest, SolverNamesAreTheSolversInUse)
   TrilinosWrappers::SparseMatrix matrix;
   body.set_matrix(body.mass_factor(), matrix);
 
-  const std::vector<std::pair<Parameters::LinearSolver, std::string>> cases = {
+  std::vector<std::pair<Parameters::LinearSolver, std::string>> cases = {
     {solver_parameters(SolverType::direct, DirectType::klu), "Amesos_Klu"},
     {solver_parameters(SolverType::direct, DirectType::mumps), "Amesos_Mumps"},
     {solver_parameters(SolverType::cg), "CG with ML"},
     {solver_parameters(SolverType::gmres), "GMRES with ML"}};
+  Parameters::LinearSolver symmetric =
+    solver_parameters(SolverType::direct, DirectType::mumps);
+  symmetric.symmetric_factorization = true;
+  cases.emplace_back(symmetric,
+                     dealii::Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD) ==
+                         1
+                       ? "MUMPS symmetric"
+                       : "Amesos_Mumps");
   for (const auto &[parameters, name] : cases)
     {
       LinearSolver solver(parameters, 1, MPI_COMM_WORLD, this->timer);

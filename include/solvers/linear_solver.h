@@ -48,6 +48,7 @@
 #include <deal.II/lac/trilinos_sparse_matrix.h>
 #include <deal.II/lac/trilinos_vector.h>
 #include <memory>
+#include <solvers/symmetric_factorization.h>
 #include <string>
 #include <vector>
 
@@ -71,6 +72,15 @@ namespace SoftRobot
     // `Direct solver = automatic` takes MUMPS for matrices of at least this
     // many rows, KLU for smaller ones (see uses_mumps()).
     static constexpr types::global_dof_index automatic_mumps_threshold = 10000;
+
+    // Whether the matrices given to this solver must be symmetric: for CG,
+    // and for the symmetric factorization (`Symmetric factorization` with
+    // MUMPS on one process; see SymmetricFactorization). The physics then
+    // leaves out the non-symmetric parts of the tangent.
+    static bool
+    needs_symmetric_matrix(const Parameters::LinearSolver &parameters,
+                           const types::global_dof_index   n_unknowns,
+                           const MPI_Comm                  mpi_communicator);
 
     // The parameters are copied. The polynomial degree of the finite
     // element tells ML whether the matrix comes from higher-order elements.
@@ -125,8 +135,9 @@ namespace SoftRobot
     set_n_preparations(const unsigned int n);
 
     // The solver prepared last: the Amesos class that was created
-    // ("Amesos_Klu", "Amesos_Mumps"), or "CG with ML" / "GMRES with ML";
-    // empty before the first prepare().
+    // ("Amesos_Klu", "Amesos_Mumps"), "MUMPS symmetric" for
+    // SymmetricFactorization, or "CG with ML" / "GMRES with ML"; empty
+    // before the first prepare().
     std::string
     solver_in_use() const;
 
@@ -146,6 +157,11 @@ namespace SoftRobot
     // KLU).
     bool
     uses_mumps(const types::global_dof_index n_unknowns) const;
+    // Whether the direct solver for a matrix of this size is
+    // SymmetricFactorization.
+    bool
+    uses_symmetric_factorization(
+      const types::global_dof_index n_unknowns) const;
     // Whether `matrix` is the matrix object analysed last (and has kept its
     // size), so that the symbolic analysis or the aggregates can be reused.
     bool
@@ -195,6 +211,8 @@ namespace SoftRobot
     std::unique_ptr<Epetra_LinearProblem> direct_problem;
     std::unique_ptr<Amesos_BaseSolver>    direct_factorization;
     std::string                           direct_solver_name;
+    // Or MUMPS's symmetric factorization, called directly.
+    std::unique_ptr<SymmetricFactorization> symmetric_factorization;
 
     // The multigrid hierarchy and the near null space it was given, one
     // mode after the other in the layout of an Epetra_MultiVector. ML keeps

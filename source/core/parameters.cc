@@ -1032,6 +1032,18 @@ namespace SoftRobot
                         "from there on, with less memory). 'automatic' "
                         "takes KLU below 10,000 unknowns and MUMPS from "
                         "there on. Both give the same answer to round-off.");
+      prm.declare_entry(
+        "Symmetric factorization",
+        "false",
+        Patterns::Bool(),
+        "Where MUMPS is the direct solver and the run has one process: "
+        "factorize the matrix as L D L^T from its lower triangle (MUMPS "
+        "called directly, not through Amesos): about half the arithmetic "
+        "of the general factorization, a third less time on the bellows "
+        "meshes. The tangent is then assembled "
+        "symmetric: the non-symmetric parts of the damping's tangent are "
+        "left out, as for CG. The answer is the same to the Newton "
+        "tolerance; the iterations may be more.");
       // The linear solves are the inner iteration of Newton's method, whose
       // own test on the true residual decides when a step has converged: a
       // linear solve only has to give a direction that is good enough.
@@ -1078,6 +1090,7 @@ namespace SoftRobot
       linear_solver            = (solver == "Direct") ? LinearSolverType::direct
                                  : (solver == "GMRES") ? LinearSolverType::gmres
                                                        : LinearSolverType::cg;
+      symmetric_factorization  = prm.get_bool("Symmetric factorization");
       direct_solver =
         (prm.get("Direct solver") == "MUMPS") ? DirectSolverType::mumps
         : (prm.get("Direct solver") == "KLU") ? DirectSolverType::klu

@@ -296,11 +296,13 @@ namespace SoftRobot
       return parameters.by_id.at(id).section;
     };
     cell_geometry.reinit(*mapping, dof_handler, *cell_quadrature, section);
-    // CG needs a symmetric matrix: the non-symmetric parts of the damping's
-    // tangent are then left out (see KelvinVoigtDamping).
+    // CG and the symmetric factorization need a symmetric matrix: the
+    // non-symmetric parts of the damping's tangent are then left out (see
+    // KelvinVoigtDamping).
     const bool symmetric_tangent =
-      (parameters.linear_solver ==
-       Parameters::LinearSolver::LinearSolverType::cg);
+      LinearSolver::needs_symmetric_matrix(parameters,
+                                           dof_handler.n_dofs(),
+                                           mpi_communicator);
     solid = std::make_unique<HyperelasticSolid<dim>>(parameters,
                                                      cell_geometry,
                                                      symmetric_tangent);

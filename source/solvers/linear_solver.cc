@@ -129,6 +129,36 @@ namespace SoftRobot
   }
 
 
+  bool
+  LinearSolver::uses_symmetric_factorization(
+    const types::global_dof_index n_unknowns) const
+  {
+    return uses_direct_solver() &&
+           needs_symmetric_matrix(parameters, n_unknowns, mpi_communicator);
+  }
+
+
+
+  // @sect4{LinearSolver::needs_symmetric_matrix}
+  bool
+  LinearSolver::needs_symmetric_matrix(
+    const Parameters::LinearSolver &parameters,
+    const types::global_dof_index   n_unknowns,
+    const MPI_Comm                  mpi_communicator)
+  {
+    using Solver = Parameters::LinearSolver::LinearSolverType;
+    using Type   = Parameters::LinearSolver::DirectSolverType;
+    if (parameters.linear_solver == Solver::cg)
+      return true;
+    const bool mumps = parameters.direct_solver == Type::mumps ||
+                       (parameters.direct_solver == Type::automatic &&
+                        n_unknowns >= automatic_mumps_threshold);
+    return parameters.linear_solver == Solver::direct && mumps &&
+           parameters.symmetric_factorization &&
+           dealii::Utilities::MPI::n_mpi_processes(mpi_communicator) == 1;
+  }
+
+
 
   bool
   LinearSolver::uses_direct_solver() const
@@ -191,6 +221,13 @@ namespace SoftRobot
     TimerOutput::Scope timer_section(timer, "Factorization");
     if (!is_analysed_matrix(matrix))
       create_factorization(matrix);
+    if (symmetric_factorization)
+      {
+        if (!symmetric_factorization->factorize(matrix))
+          throw StepFailure("the symmetric factorization found the matrix "
+                            "singular");
+        return;
+      }
     if (direct_factorization->NumericFactorization() != 0)
       throw StepFailure("the sparse factorization failed (singular "
                         "matrix?)");
@@ -212,6 +249,16 @@ namespace SoftRobot
     const TrilinosWrappers::SparseMatrix &matrix)
   {
     direct_factorization.reset();
+    symmetric_factorization.reset();
+    if (uses_symmetric_factorization(matrix.m()))
+      {
+        direct_problem.reset();
+        symmetric_factorization = std::make_unique<SymmetricFactorization>();
+        symmetric_factorization->analyse(matrix);
+        direct_solver_name = "MUMPS symmetric";
+        remember_analysed_matrix(matrix);
+        return;
+      }
     direct_problem = std::make_unique<Epetra_LinearProblem>();
     direct_problem->SetOperator(
       const_cast<Epetra_CrsMatrix *>(&matrix.trilinos_matrix()));
@@ -377,6 +424,11 @@ namespace SoftRobot
   LinearSolver::solve_direct(const TrilinosWrappers::MPI::Vector &rhs,
                              TrilinosWrappers::MPI::Vector       &solution)
   {
+    if (symmetric_factorization)
+      {
+        symmetric_factorization->solve(rhs, solution);
+        return;
+      }
     direct_problem->SetLHS(&solution.trilinos_vector());
     direct_problem->SetRHS(
       const_cast<Epetra_MultiVector *>(&rhs.trilinos_vector()));
@@ -448,7 +500,9 @@ namespace SoftRobot
   LinearSolver::solver_in_use() const
   {
     if (uses_direct_solver())
-      return direct_factorization ? direct_solver_name : "";
+      return (direct_factorization || symmetric_factorization)
+               ? direct_solver_name
+               : "";
     return amg_preconditioner
              ? Parameters::name_of(parameters.linear_solver) + " with ML"
              : "";

@@ -1,0 +1,234 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
+
+// @sect3{The symmetric factorization}
+//
+// See include/solvers/symmetric_factorization.h.
+
+#include <Epetra_CrsMatrix.h>
+#include <Epetra_Map.h>
+#include <algorithm>
+#include <deal.II/base/exceptions.h>
+#include <dmumps_c.h>
+#include <mpi.h>
+#include <solvers/symmetric_factorization.h>
+#include <string>
+
+namespace SoftRobot
+{
+  // MUMPS's control and information arrays are indexed from one in its
+  // documentation (ICNTL(8), INFOG(1)) and from zero here.
+  struct SymmetricFactorization::Mumps
+  {
+    DMUMPS_STRUC_C data = {};
+
+    void
+    run(const int job)
+    {
+      data.job = job;
+      dmumps_c(&data);
+    }
+
+    int
+    error() const
+    {
+      return data.infog[0];
+    }
+
+    std::string
+    describe() const
+    {
+      return "MUMPS returned INFOG(1) = " + std::to_string(data.infog[0]) +
+             ", INFOG(2) = " + std::to_string(data.infog[1]);
+    }
+  };
+
+
+
+  // @sect4{SymmetricFactorization::SymmetricFactorization}
+  //
+  // A MUMPS instance on this process alone, symmetric (SYM = 2), the host
+  // working too (PAR = 1), without output, without scaling.
+  SymmetricFactorization::SymmetricFactorization()
+    : mumps(std::make_unique<Mumps>())
+  {
+    mumps->data.comm_fortran =
+      static_cast<MUMPS_INT>(MPI_Comm_c2f(MPI_COMM_SELF));
+    mumps->data.par = 1;
+    mumps->data.sym = 2;
+    mumps->run(-1);
+    AssertThrow(mumps->error() == 0,
+                ExcMessage("MUMPS could not be initialised: " +
+                           mumps->describe()));
+    mumps->data.icntl[0] = -1;
+    mumps->data.icntl[1] = -1;
+    mumps->data.icntl[2] = -1;
+    mumps->data.icntl[3] = 0;
+    mumps->data.icntl[7] = 0;
+  }
+
+
+
+  SymmetricFactorization::~SymmetricFactorization()
+  {
+    mumps->run(-2);
+  }
+
+
+
+  // @sect4{SymmetricFactorization::analyse}
+  //
+  // The entries of the lower triangle and the positions of their mirrors,
+  // found through each row's entries sorted by column.
+  void
+  SymmetricFactorization::analyse(const TrilinosWrappers::SparseMatrix &matrix)
+  {
+    const Epetra_CrsMatrix &A = matrix.trilinos_matrix();
+    AssertThrow(A.Comm().NumProc() == 1,
+                ExcMessage("The symmetric factorization needs the matrix on "
+                           "one process."));
+    int    *offsets = nullptr, *local_columns = nullptr;
+    double *entries = nullptr;
+    const_cast<Epetra_CrsMatrix &>(A).ExtractCrsDataPointers(offsets,
+                                                             local_columns,
+                                                             entries);
+    const int n = A.NumMyRows();
+    row_indices.resize(n);
+    // The global row of each local row, and the local row of each global
+    // index (all rows are on this process).
+    std::vector<int> local_row(n, -1);
+    for (int i = 0; i < n; ++i)
+      {
+        row_indices[i] = A.RowMap().GID(i);
+        AssertThrow(row_indices[i] >= 0 && row_indices[i] < n,
+                    ExcInternalError());
+        local_row[row_indices[i]] = i;
+      }
+    // Per local row, its positions sorted by global column.
+    std::vector<int> global_column(offsets[n]);
+    for (int k = 0; k < offsets[n]; ++k)
+      global_column[k] = A.ColMap().GID(local_columns[k]);
+    std::vector<int> sorted(offsets[n]);
+    for (int i = 0; i < n; ++i)
+      {
+        for (int k = offsets[i]; k < offsets[i + 1]; ++k)
+          sorted[k] = k;
+        std::sort(sorted.begin() + offsets[i],
+                  sorted.begin() + offsets[i + 1],
+                  [&](const int a, const int b) {
+                    return global_column[a] < global_column[b];
+                  });
+      }
+    const auto position_in_row = [&](const int i, const int column) {
+      const auto begin = sorted.begin() + offsets[i];
+      const auto end   = sorted.begin() + offsets[i + 1];
+      const auto found =
+        std::lower_bound(begin, end, column, [&](const int k, const int c) {
+          return global_column[k] < c;
+        });
+      AssertThrow(found != end && global_column[*found] == column,
+                  ExcMessage("The symmetric factorization needs a matrix "
+                             "with a symmetric sparsity pattern."));
+      return *found;
+    };
+
+    rows.clear();
+    columns.clear();
+    positions.clear();
+    mirror_positions.clear();
+    for (int i = 0; i < n; ++i)
+      for (int k = offsets[i]; k < offsets[i + 1]; ++k)
+        {
+          const int row = row_indices[i], column = global_column[k];
+          if (column > row)
+            continue;
+          rows.push_back(row + 1);
+          columns.push_back(column + 1);
+          positions.push_back(k);
+          mirror_positions.push_back(
+            column == row ? k : position_in_row(local_row[column], row));
+        }
+    values.resize(rows.size());
+    right_hand_side.resize(n);
+
+    mumps->data.n   = n;
+    mumps->data.nnz = rows.size();
+    mumps->data.irn = rows.data();
+    mumps->data.jcn = columns.data();
+    mumps->data.a   = values.data();
+    mumps->run(1);
+    AssertThrow(mumps->error() >= 0,
+                ExcMessage("The symmetric analysis failed: " +
+                           mumps->describe()));
+    analysed   = true;
+    factorized = false;
+  }
+
+
+
+  // @sect4{SymmetricFactorization::factorize}
+  //
+  // When MUMPS's estimate of its working memory was too small (INFOG(1) =
+  // -8, -9 or -14: more pivoting than the analysis foresaw), the memory
+  // relaxation ICNTL(14) is doubled and the factorization repeated.
+  bool
+  SymmetricFactorization::factorize(
+    const TrilinosWrappers::SparseMatrix &matrix)
+  {
+    Assert(analysed, ExcMessage("factorize() needs analyse() first."));
+    int    *offsets = nullptr, *local_columns = nullptr;
+    double *entries = nullptr;
+    const_cast<Epetra_CrsMatrix &>(matrix.trilinos_matrix())
+      .ExtractCrsDataPointers(offsets, local_columns, entries);
+    AssertThrow(static_cast<std::size_t>(
+                  offsets[matrix.trilinos_matrix().NumMyRows()]) >=
+                  positions.size(),
+                ExcInternalError());
+    for (std::size_t e = 0; e < values.size(); ++e)
+      values[e] = 0.5 * (entries[positions[e]] + entries[mirror_positions[e]]);
+    mumps->data.a = values.data();
+    factorized    = false;
+    for (unsigned int attempt = 0; attempt < 4; ++attempt)
+      {
+        mumps->run(2);
+        const int error = mumps->error();
+        if (error >= 0)
+          {
+            factorized = true;
+            return true;
+          }
+        if (error == -10)
+          return false;
+        if (error != -8 && error != -9 && error != -14)
+          break;
+        mumps->data.icntl[13] = 2 * std::max(mumps->data.icntl[13], 20);
+      }
+    AssertThrow(false,
+                ExcMessage("The symmetric factorization failed: " +
+                           mumps->describe()));
+    return false;
+  }
+
+
+
+  // @sect4{SymmetricFactorization::solve}
+  void
+  SymmetricFactorization::solve(const TrilinosWrappers::MPI::Vector &rhs,
+                                TrilinosWrappers::MPI::Vector       &solution)
+  {
+    AssertThrow(factorized,
+                ExcMessage("solve() needs a successful factorize()."));
+    const double *b = rhs.trilinos_vector()[0];
+    for (std::size_t i = 0; i < row_indices.size(); ++i)
+      right_hand_side[row_indices[i]] = b[i];
+    mumps->data.rhs  = right_hand_side.data();
+    mumps->data.nrhs = 1;
+    mumps->data.lrhs = right_hand_side.size();
+    mumps->run(3);
+    AssertThrow(mumps->error() >= 0,
+                ExcMessage("The symmetric back substitution failed: " +
+                           mumps->describe()));
+    double *x = solution.trilinos_vector()[0];
+    for (std::size_t i = 0; i < row_indices.size(); ++i)
+      x[i] = right_hand_side[row_indices[i]];
+  }
+} // namespace SoftRobot
