@@ -157,30 +157,37 @@ namespace SoftRobot
           }
     }
 
+    // The operands of a product: the n rows of $\mathbf X$ and the
+    // segments of s columns of $\mathbf Y$ (`stride`), K in between.
+    struct Product
+    {
+      unsigned int  n;
+      unsigned int  n_segments;
+      unsigned int  stride;
+      unsigned int  K;
+      const double *X;
+      const double *Y;
+      bool          lower;
+      double       *R;
+    };
+
     template <typename Vector, int lanes, int rows, int vectors>
     __attribute__((always_inline)) inline void
-    multiply(const unsigned int n,
-             const unsigned int n_segments,
-             const unsigned int stride,
-             const unsigned int K,
-             const double      *X,
-             const double      *Y,
-             const bool         lower,
-             double            *R)
+    multiply(const Product &p)
     {
       constexpr unsigned int width     = lanes * vectors;
-      const unsigned int     n_columns = n_segments * stride;
-      for (unsigned int segment = 0; segment < n_segments; ++segment)
-        for (unsigned int b0 = 0; b0 < n; b0 += width)
+      const unsigned int     n_columns = p.n_segments * p.stride;
+      for (unsigned int segment = 0; segment < p.n_segments; ++segment)
+        for (unsigned int b0 = 0; b0 < p.n; b0 += width)
           {
-            const unsigned int j = segment * stride + b0;
-            unsigned int       a = lower ? b0 / rows * rows : 0;
-            for (; a + rows <= n; a += rows)
+            const unsigned int j = segment * p.stride + b0;
+            unsigned int       a = p.lower ? b0 / rows * rows : 0;
+            for (; a + rows <= p.n; a += rows)
               multiply_tile<Vector, lanes, rows, vectors>(
-                a, j, n_columns, K, X, Y, R);
-            for (; a < n; ++a)
+                a, j, n_columns, p.K, p.X, p.Y, p.R);
+            for (; a < p.n; ++a)
               multiply_tile<Vector, lanes, 1, vectors>(
-                a, j, n_columns, K, X, Y, R);
+                a, j, n_columns, p.K, p.X, p.Y, p.R);
           }
     }
 
@@ -189,30 +196,16 @@ namespace SoftRobot
     using Vector4 = double __attribute__((vector_size(32)));
 
     void
-    multiply_generic(const unsigned int n,
-                     const unsigned int n_segments,
-                     const unsigned int stride,
-                     const unsigned int K,
-                     const double      *X,
-                     const double      *Y,
-                     const bool         lower,
-                     double            *R)
+    multiply_generic(const Product &p)
     {
-      multiply<Vector2, 2, 4, 2>(n, n_segments, stride, K, X, Y, lower, R);
+      multiply<Vector2, 2, 4, 2>(p);
     }
 
 #if defined(__x86_64__) && defined(__GNUC__)
     __attribute__((target("avx2"))) void
-    multiply_avx2(const unsigned int n,
-                  const unsigned int n_segments,
-                  const unsigned int stride,
-                  const unsigned int K,
-                  const double      *X,
-                  const double      *Y,
-                  const bool         lower,
-                  double            *R)
+    multiply_avx2(const Product &p)
     {
-      multiply<Vector4, 4, 3, 2>(n, n_segments, stride, K, X, Y, lower, R);
+      multiply<Vector4, 4, 3, 2>(p);
     }
 
     bool
@@ -252,26 +245,20 @@ namespace SoftRobot
           std::memmove(&block.left[a * K],
                        &block.left[a * capacity],
                        K * sizeof(double));
+      const Product product{n,
+                            dim * dim,
+                            block.stride,
+                            K,
+                            block.left.data(),
+                            block.right.data(),
+                            block.symmetric,
+                            block.values.data()};
 #if defined(__x86_64__) && defined(__GNUC__)
       if (has_avx2())
-        multiply_avx2(n,
-                      dim * dim,
-                      block.stride,
-                      K,
-                      block.left.data(),
-                      block.right.data(),
-                      block.symmetric,
-                      block.values.data());
+        multiply_avx2(product);
       else
 #endif
-        multiply_generic(n,
-                         dim * dim,
-                         block.stride,
-                         K,
-                         block.left.data(),
-                         block.right.data(),
-                         block.symmetric,
-                         block.values.data());
+        multiply_generic(product);
       block.pending_points = 0;
     }
   } // namespace
