@@ -29,9 +29,10 @@
 // The vectors' entries of those rows are collected in a small ghost vector
 // and sent to their owners in one exchange whose pattern is set up once.
 //
-// This class and LinearSolver are the only ones that reach into Epetra
-// objects behind deal.II's wrappers (the value arrays of the matrices and
-// vectors, and an Epetra_Import for the ghost exchange).
+// This class and LinearSolver (with its SymmetricFactorization) are the
+// only ones that reach into Epetra objects behind deal.II's wrappers (the
+// value arrays of the matrices and vectors, and an Epetra_Import for the
+// ghost exchange).
 //
 // Implemented in source/assembly/direct_address_assembler.cc.
 

@@ -28,10 +28,12 @@
 // aggregates of the multigrid hierarchy (which unknowns each coarse unknown
 // stands for).
 //
-// This class is the only place of the program that uses Amesos, ML and the
-// Epetra objects behind deal.II's Trilinos wrappers. Where it has to reach
-// behind deal.II's interface, linear_solver.cc says why; tests/linear_solver.cc
-// checks each of these places against the Trilinos version in use.
+// This class (with SymmetricFactorization, which it owns and which reads
+// the Epetra matrix's arrays for MUMPS) is the only place of the program
+// that uses Amesos, ML, MUMPS and the Epetra objects behind deal.II's
+// Trilinos wrappers. Where it has to reach behind deal.II's interface,
+// linear_solver.cc says why; tests/linear_solver.cc checks each of these
+// places against the Trilinos version in use.
 //
 // The constraints of the problem are none of this class's business: the
 // caller hands in a matrix with the constrained rows and columns already
