@@ -159,6 +159,11 @@ namespace SoftRobot
     // KLU).
     bool
     uses_mumps(const types::global_dof_index n_unknowns) const;
+    // The same for given parameters: `Direct solver = MUMPS`, or
+    // `automatic` from the threshold on.
+    static bool
+    mumps_for(const Parameters::LinearSolver &parameters,
+              const types::global_dof_index   n_unknowns);
     // Whether the direct solver for a matrix of this size is
     // SymmetricFactorization.
     bool

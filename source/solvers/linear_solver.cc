@@ -122,6 +122,15 @@ namespace SoftRobot
   bool
   LinearSolver::uses_mumps(const types::global_dof_index n_unknowns) const
   {
+    return mumps_for(parameters, n_unknowns);
+  }
+
+
+
+  bool
+  LinearSolver::mumps_for(const Parameters::LinearSolver &parameters,
+                          const types::global_dof_index   n_unknowns)
+  {
     using Type = Parameters::LinearSolver::DirectSolverType;
     return parameters.direct_solver == Type::mumps ||
            (parameters.direct_solver == Type::automatic &&
@@ -147,13 +156,10 @@ namespace SoftRobot
     const MPI_Comm                  mpi_communicator)
   {
     using Solver = Parameters::LinearSolver::LinearSolverType;
-    using Type   = Parameters::LinearSolver::DirectSolverType;
     if (parameters.linear_solver == Solver::cg)
       return true;
-    const bool mumps = parameters.direct_solver == Type::mumps ||
-                       (parameters.direct_solver == Type::automatic &&
-                        n_unknowns >= automatic_mumps_threshold);
-    return parameters.linear_solver == Solver::direct && mumps &&
+    return parameters.linear_solver == Solver::direct &&
+           mumps_for(parameters, n_unknowns) &&
            parameters.symmetric_factorization &&
            dealii::Utilities::MPI::n_mpi_processes(mpi_communicator) == 1;
   }
