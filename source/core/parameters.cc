@@ -1039,8 +1039,8 @@ namespace SoftRobot
         "Where MUMPS is the direct solver and the run has one process: "
         "factorize the matrix as L D L^T from its lower triangle (MUMPS "
         "called directly, not through Amesos): about half the arithmetic "
-        "of the general factorization, a third less time on the bellows "
-        "meshes. The tangent is then assembled "
+        "of the general factorization, a fifth to a third less time on "
+        "the bellows meshes. The tangent is then assembled "
         "symmetric: the non-symmetric parts of the damping's tangent are "
         "left out, as for CG. The answer is the same to the Newton "
         "tolerance; the iterations may be more.");
