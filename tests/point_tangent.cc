@@ -11,7 +11,8 @@
 // writes with the sum over the points formed directly in long double:
 // - in 1D, 2D and 3D, with the quadratic element's number of shape
 //   functions ($3^d$), so that the rows and columns are not multiples of
-//   the tiles' sizes;
+//   the tiles' sizes, and with the linear simplex's $d + 1$ and one point,
+//   whose blocks of at most four columns take narrower tiles;
 // - for a general tensor, and for one with the major symmetry $\mathcal
 //   A_{cJkL} = \mathcal A_{kLcJ}$, of which only the pairs $b \le a$ are
 //   formed and the others taken from their transposes;
@@ -57,19 +58,17 @@ namespace
     double                      weight;
   };
 
-  // Adds `n_points` random points to a block of a cell with `n_q` points
-  // and compares the block with the direct sum; returns the largest ratio
-  // of difference to tolerance.
+  // Adds `n_points` random points to a block of a cell with `n` shape
+  // functions per component and `n_q` points and compares the block with
+  // the direct sum; returns the largest ratio of difference to tolerance.
   template <int dim>
   double
-  largest_error_ratio(const unsigned int n_q,
+  largest_error_ratio(const unsigned int n,
+                      const unsigned int n_q,
                       const unsigned int n_points,
                       const Symmetry     symmetry,
                       std::mt19937      &rng)
   {
-    unsigned int n = 1;
-    for (unsigned int d = 0; d < dim; ++d)
-      n *= 3;
     CellGeometry<dim> geometry;
     geometry.n_shape_functions = n;
     geometry.dofs_per_cell     = n * dim;
@@ -161,19 +160,30 @@ TYPED_TEST(PointTangentTest, CellProductEqualsTheSumOverPoints)
 {
   constexpr int dim = TypeParam::value;
   std::mt19937  rng(2024 + dim);
-  unsigned int  n_q = 1;
+  unsigned int  n_quadratic = 1;
   for (unsigned int d = 0; d < dim; ++d)
-    n_q *= 3;
-  for (const Symmetry symmetry : {Symmetry::general, Symmetry::symmetric})
-    for (const unsigned int n_points : {n_q, n_q - 1, 2 * n_q + 1})
-      {
-        const double ratio =
-          largest_error_ratio<dim>(n_q, n_points, symmetry, rng);
-        std::cout << dim << "D, "
-                  << (symmetry == Symmetry::symmetric ? "symmetric" : "general")
-                  << ", " << n_points << " points of a cell of " << n_q
-                  << ": largest difference / tolerance = " << ratio
-                  << std::endl;
-        EXPECT_LE(ratio, 1.) << dim << "D, " << n_points << " points";
-      }
+    n_quadratic *= 3;
+  // The quadratic tensor-product cell (n = n_q = 3^dim) and the linear
+  // simplex (n = dim + 1 shape functions, one point), whose narrow blocks
+  // take the narrow tiles.
+  const std::pair<unsigned int, unsigned int> cells[] = {
+    {n_quadratic, n_quadratic}, {dim + 1, 1}};
+  for (const auto &[n, n_q] : cells)
+    for (const Symmetry symmetry : {Symmetry::general, Symmetry::symmetric})
+      for (const unsigned int n_points : {n_q, n_q - 1, 2 * n_q + 1})
+        {
+          if (n_points == 0)
+            continue;
+          const double ratio =
+            largest_error_ratio<dim>(n, n_q, n_points, symmetry, rng);
+          std::cout << dim << "D, "
+                    << (symmetry == Symmetry::symmetric ? "symmetric" :
+                                                          "general")
+                    << ", " << n_points << " points of a cell of " << n_q
+                    << " with " << n
+                    << " shape functions: largest difference / tolerance = "
+                    << ratio << std::endl;
+          EXPECT_LE(ratio, 1.) << dim << "D, " << n << " shape functions, "
+                               << n_points << " points";
+        }
 }

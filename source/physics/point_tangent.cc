@@ -102,7 +102,9 @@ namespace SoftRobot
   // on processors with AVX2 (`__builtin_cpu_supports`, asked once) they
   // are four-lane vectors in tiles of 3 rows by 8 columns. These sizes
   // were the fastest of those tried on quadratic hexahedra (a throwaway
-  // driver, doc/performance_discussion.md, item 39). Both variants
+  // driver, doc/performance_discussion.md, item 39). Blocks of at most four
+  // shape functions (linear tetrahedra) take tiles of 4 by 4 there: padded
+  // to 8 columns, half of their products were zeros (item 40). Both variants
   // multiply and add (no fused multiply-add) in the same order, so the
   // result does not depend on the processor: the same bits, checked by
   // hand on random blocks.
@@ -205,7 +207,10 @@ namespace SoftRobot
     __attribute__((target("avx2"))) void
     multiply_avx2(const Product &p)
     {
-      multiply<Vector4, 4, 3, 2>(p);
+      if (p.stride == 4)
+        multiply<Vector4, 4, 4, 1>(p);
+      else
+        multiply<Vector4, 4, 3, 2>(p);
     }
 
     bool
@@ -223,9 +228,9 @@ namespace SoftRobot
 #endif
 
     unsigned int
-    tile_width()
+    tile_width(const unsigned int n)
     {
-      return has_avx2() ? 8 : 4;
+      return (has_avx2() && n > 4) ? 8 : 4;
     }
 
     // Multiplies out the points added since the last call.
@@ -330,7 +335,7 @@ namespace SoftRobot
   reset_tangent_block(const CellGeometry<dim> &geometry, TangentBlock &block)
   {
     const unsigned int n     = geometry.n_shape_functions;
-    const unsigned int width = tile_width();
+    const unsigned int width = tile_width(n);
     block.stride             = (n + width - 1) / width * width;
     block.values.assign(n * dim * dim * block.stride, 0.);
     const unsigned int capacity = dim * geometry.n_q_points;
