@@ -166,8 +166,9 @@ TYPED_TEST(PointTangentTest, CellProductEqualsTheSumOverPoints)
   // The quadratic tensor-product cell (n = n_q = 3^dim) and the linear
   // simplex (n = dim + 1 shape functions, one point), whose narrow blocks
   // take the narrow tiles.
-  const std::pair<unsigned int, unsigned int> cells[] = {
-    {n_quadratic, n_quadratic}, {dim + 1, 1}};
+  const std::pair<unsigned int, unsigned int> cells[] = {{n_quadratic,
+                                                          n_quadratic},
+                                                         {dim + 1, 1}};
   for (const auto &[n, n_q] : cells)
     for (const Symmetry symmetry : {Symmetry::general, Symmetry::symmetric})
       for (const unsigned int n_points : {n_q, n_q - 1, 2 * n_q + 1})
@@ -177,8 +178,8 @@ TYPED_TEST(PointTangentTest, CellProductEqualsTheSumOverPoints)
           const double ratio =
             largest_error_ratio<dim>(n, n_q, n_points, symmetry, rng);
           std::cout << dim << "D, "
-                    << (symmetry == Symmetry::symmetric ? "symmetric" :
-                                                          "general")
+                    << (symmetry == Symmetry::symmetric ? "symmetric"
+                                                        : "general")
                     << ", " << n_points << " points of a cell of " << n_q
                     << " with " << n
                     << " shape functions: largest difference / tolerance = "
