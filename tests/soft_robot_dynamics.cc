@@ -161,10 +161,15 @@ protected:
   static constexpr double mu_block = 1e4 * mu, kappa_block = 2. * mu_block;
 
   // The static equilibrium of the hanging column, reached in `load_steps`
-  // load steps, the ones before the last to `load_step_tolerance`: the tip
-  // displacement and the matrix factorizations it took.
+  // load steps, the ones before the last to `load_step_tolerance`, with the
+  // Nonlinear solver's `relative_tolerance` and the `equilibrium_tolerance`
+  // of the last step: the tip displacement and the matrix factorizations
+  // it took.
   static std::pair<Tensor<1, dim>, unsigned int>
-  hang(const unsigned int load_steps, const double load_step_tolerance)
+  hang(const unsigned int load_steps,
+       const double       load_step_tolerance,
+       const double       relative_tolerance    = 1e-13,
+       const double       equilibrium_tolerance = 0.)
   {
     const double       section = section_factor(dim, A, width);
     std::ostringstream sections;
@@ -180,9 +185,10 @@ protected:
       << "  set Fixed components = " << walled_base(dim) << "\nend\n"
       << "subsection Initial conditions\n  set Type = static equilibrium\n"
       << "  set Load steps = " << load_steps << "\n"
-      << "  set Load step tolerance = " << load_step_tolerance << "\nend\n"
+      << "  set Load step tolerance = " << load_step_tolerance << "\n"
+      << "  set Equilibrium tolerance = " << equilibrium_tolerance << "\nend\n"
       << "subsection Nonlinear solver\n  set Absolute tolerance = 1e-10\n"
-      << "  set Relative tolerance = 1e-13\nend\n"
+      << "  set Relative tolerance = " << relative_tolerance << "\nend\n"
       << "subsection Linear solver\n  set Solver = Direct\nend\n";
     Simulation<dim> column(read(parameter_text(dim, sections.str())),
                            MPI_COMM_WORLD);
@@ -278,6 +284,28 @@ TYPED_TEST(StaticSag, LooseLoadStepsReachTheSameEquilibrium)
             << std::endl;
   EXPECT_NEAR((u_loose - u_tight).norm(), 0., 1e-9 * u_tight.norm());
   EXPECT_LT(loose_factorizations, tight_factorizations);
+}
+
+// The state the motion starts from can be converged more tightly than the
+// time steps (`Equilibrium tolerance`): with the steps' relative tolerance
+// at 1e-4, the last load step at 1e-13 must give the equilibrium of the
+// tight solve, and without it the equilibrium must be visibly off (else
+// this test could not tell the two apart).
+TYPED_TEST(StaticSag, EquilibriumToleranceTightensTheLastLoadStep)
+{
+  const Tensor<1, TestFixture::dim> u_tight = TestFixture::hang(2, 0.1).first;
+  const Tensor<1, TestFixture::dim> u_loose =
+    TestFixture::hang(2, 0.1, 1e-4).first;
+  const Tensor<1, TestFixture::dim> u_start =
+    TestFixture::hang(2, 0.1, 1e-4, 1e-13).first;
+  const double loose = (u_loose - u_tight).norm() / u_tight.norm();
+  const double start = (u_start - u_tight).norm() / u_tight.norm();
+  std::cout << TestFixture::dim
+            << "D static sag, steps' tolerance 1e-4: tip off the tight "
+            << "solve's by " << loose << " (relative), with the equilibrium "
+            << "at 1e-13 by " << start << std::endl;
+  EXPECT_LE(start, 1e-11);
+  EXPECT_GE(loose, 1e3 * std::max(start, 1e-14));
 }
 
 

@@ -270,6 +270,7 @@ namespace SoftRobot
       VelocityCoordinates velocity_coordinates;
       unsigned int        load_steps;
       double              load_step_tolerance;
+      double              equilibrium_tolerance;
 
       static void
       declare_parameters(ParameterHandler &prm);

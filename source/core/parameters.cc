@@ -786,6 +786,17 @@ namespace SoftRobot
         "0 converges every step to that tolerance). These steps only lead "
         "to the equilibrium: the last one converges to the Nonlinear "
         "solver's tolerances from wherever they end.");
+      prm.declare_entry(
+        "Equilibrium tolerance",
+        "0",
+        Patterns::Double(0., 1.),
+        "Relative tolerance of Newton's method in the last load step of the "
+        "static equilibrium, the state the motion starts from (times the "
+        "same force scale as Nonlinear solver/Relative tolerance, and never "
+        "above it; 0: that tolerance). The initial acceleration is the "
+        "residual of this state divided by the masses: a residual left where "
+        "little mass is, at the time steps' tolerance, can invert elements "
+        "in the first step (doc/performance_discussion.md, item 41).");
       prm.leave_subsection();
     }
 
@@ -802,8 +813,9 @@ namespace SoftRobot
         (prm.get("Velocity coordinates") == "initial state")
           ? VelocityCoordinates::initial_state
           : VelocityCoordinates::reference;
-      load_steps          = prm.get_integer("Load steps");
-      load_step_tolerance = prm.get_double("Load step tolerance");
+      load_steps            = prm.get_integer("Load steps");
+      load_step_tolerance   = prm.get_double("Load step tolerance");
+      equilibrium_tolerance = prm.get_double("Equilibrium tolerance");
       prm.leave_subsection();
     }
 

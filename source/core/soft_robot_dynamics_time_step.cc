@@ -393,6 +393,14 @@ namespace SoftRobot
       std::max(parameters.load_step_tolerance,
                parameters.newton_relative_tolerance);
     const NewtonSolver path_solver(path_parameters, pcout);
+    // The last load step, to the `Equilibrium tolerance` where it is
+    // tighter than the time steps'.
+    Parameters::NonlinearSolver equilibrium_parameters = parameters;
+    if (parameters.equilibrium_tolerance > 0.)
+      equilibrium_parameters.newton_relative_tolerance =
+        std::min(parameters.equilibrium_tolerance,
+                 parameters.newton_relative_tolerance);
+    const NewtonSolver equilibrium_solver(equilibrium_parameters, pcout);
 
     // The combined load parameter runs from 0 to 2: gravity factor
     // min(lambda, 1), traction factor max(lambda - 1, 0).
@@ -410,8 +418,9 @@ namespace SoftRobot
         const TrilinosWrappers::MPI::Vector saved = current.u;
         try
           {
-            const bool          last   = std::abs(target - end) < 1e-12;
-            const NewtonSolver &solver = last ? newton_solver : path_solver;
+            const bool          last = std::abs(target - end) < 1e-12;
+            const NewtonSolver &solver =
+              last ? equilibrium_solver : path_solver;
             const NewtonSolver::Result result =
               solver.solve(current.u, problem, external.l2_norm(), false);
             counters.newton_iterations += result.iterations;
