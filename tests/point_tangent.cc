@@ -188,3 +188,145 @@ TYPED_TEST(PointTangentTest, CellProductEqualsTheSumOverPoints)
                                << n_points << " points";
         }
 }
+
+
+
+// The gradients of two fields and the forces of two stresses of a cell as
+// products (reset_cell_products(), field_gradients(), add_point_stress(),
+// add_stress_forces()) against the sums formed directly in long double: a
+// cell with random reference gradients and inverse Jacobians, random nodal
+// values, stresses and weights, the quadratic cell and the linear simplex.
+// The gradients, sums of n products in the order of the nodes, must be the
+// same to the bit as the sums of HyperelasticSolid::displacement_gradients()
+// (the order the products keep); the forces, sums of d n_q products of
+// three factors, within $\gamma_{d n_q + 2}$ times their terms' absolute
+// values.
+TYPED_TEST(PointTangentTest, FieldGradientsAndForcesAreTheSumsOverPoints)
+{
+  constexpr int                          dim = TypeParam::value;
+  std::mt19937                           rng(4711 + dim);
+  std::uniform_real_distribution<double> uniform(-1., 1.);
+  unsigned int                           n_quadratic = 1;
+  for (unsigned int d = 0; d < dim; ++d)
+    n_quadratic *= 3;
+  const std::pair<unsigned int, unsigned int> cells[] = {{n_quadratic,
+                                                          n_quadratic},
+                                                         {dim + 1, 1}};
+  for (const auto &[n, n_q] : cells)
+    {
+      CellGeometry<dim> geometry;
+      geometry.n_cells           = 1;
+      geometry.n_shape_functions = n;
+      geometry.dofs_per_cell     = n * dim;
+      geometry.n_q_points        = n_q;
+      geometry.shape_dofs.resize(n * dim);
+      for (unsigned int i = 0; i < n * dim; ++i)
+        geometry.shape_dofs[i] = n * dim - 1 - i;
+      geometry.reference_gradients.resize(n_q * n * dim);
+      for (unsigned int q = 0; q < n_q; ++q)
+        {
+          for (unsigned int a = 0; a < n; ++a)
+            {
+              Tensor<1, dim> g;
+              for (unsigned int d = 0; d < dim; ++d)
+                g[d] = uniform(rng);
+              for (unsigned int c = 0; c < dim; ++c)
+                geometry.reference_gradients[q * n * dim +
+                                             geometry.shape_dofs[a * dim + c]] =
+                  g;
+            }
+          Tensor<2, dim> inverse;
+          for (unsigned int d = 0; d < dim; ++d)
+            for (unsigned int e = 0; e < dim; ++e)
+              inverse[d][e] = uniform(rng) + (d == e ? 2. : 0.);
+          geometry.inverse_jacobians.push_back(inverse);
+        }
+      std::vector<double> u(n * dim), v(n * dim);
+      for (unsigned int i = 0; i < n * dim; ++i)
+        {
+          u[i] = uniform(rng);
+          v[i] = uniform(rng);
+        }
+      std::vector<Tensor<2, dim>> P(n_q), P_v(n_q);
+      std::vector<double>         weight(n_q);
+      for (unsigned int q = 0; q < n_q; ++q)
+        {
+          for (unsigned int c = 0; c < dim; ++c)
+            for (unsigned int J = 0; J < dim; ++J)
+              {
+                P[q][c][J]   = uniform(rng);
+                P_v[q][c][J] = uniform(rng);
+              }
+          weight[q] = 0.5 + 0.5 * uniform(rng);
+        }
+
+      CellProducts products;
+      reset_cell_products(geometry, 0, products);
+      std::vector<Tensor<2, dim>> H, L;
+      field_gradients(geometry, products, {u.data(), v.data()}, {&H, &L});
+      for (unsigned int q = 0; q < n_q; ++q)
+        {
+          add_point_stress(q, 0, P[q], weight[q], products);
+          add_point_stress(q, 1, P_v[q], weight[q], products);
+        }
+      Vector<double> force(n * dim), second_force(n * dim);
+      add_stress_forces(geometry, products, force, second_force);
+
+      // The gradients: the sums of HyperelasticSolid, in double.
+      unsigned int gradient_mismatches = 0;
+      for (unsigned int q = 0; q < n_q; ++q)
+        for (unsigned int c = 0; c < dim; ++c)
+          for (unsigned int J = 0; J < dim; ++J)
+            {
+              double sum_u = 0., sum_v = 0.;
+              for (unsigned int a = 0; a < n; ++a)
+                {
+                  const Tensor<1, dim> g = geometry.shape_gradient(0, q, a);
+                  sum_u += u[geometry.shape_dofs[a * dim + c]] * g[J];
+                  sum_v += v[geometry.shape_dofs[a * dim + c]] * g[J];
+                }
+              gradient_mismatches +=
+                (H[q][c][J] != sum_u) + (L[q][c][J] != sum_v);
+            }
+
+      // The forces.
+      const double eps   = 0.5 * std::numeric_limits<double>::epsilon();
+      const double m     = dim * n_q + 2;
+      const double gamma = m * eps / (1. - m * eps);
+      double       worst = 0.;
+      for (unsigned int a = 0; a < n; ++a)
+        for (unsigned int c = 0; c < dim; ++c)
+          {
+            long double sums[2] = {0., 0.}, magnitudes[2] = {0., 0.};
+            for (unsigned int q = 0; q < n_q; ++q)
+              {
+                const Tensor<1, dim> g = geometry.shape_gradient(0, q, a);
+                for (unsigned int J = 0; J < dim; ++J)
+                  {
+                    const long double terms[2] = {
+                      static_cast<long double>(g[J]) * P[q][c][J] * weight[q],
+                      static_cast<long double>(g[J]) * P_v[q][c][J] *
+                        weight[q]};
+                    for (unsigned int s = 0; s < 2; ++s)
+                      {
+                        sums[s] += terms[s];
+                        magnitudes[s] += std::abs(terms[s]);
+                      }
+                  }
+              }
+            const unsigned int i         = geometry.shape_dofs[a * dim + c];
+            const double       values[2] = {force(i), second_force(i)};
+            for (unsigned int s = 0; s < 2; ++s)
+              worst =
+                std::max(worst,
+                         std::abs(values[s] - static_cast<double>(sums[s])) /
+                           (gamma * static_cast<double>(magnitudes[s])));
+          }
+      std::cout << dim << "D, a cell of " << n << " shape functions and " << n_q
+                << " points: " << gradient_mismatches
+                << " gradients not bit for bit the direct sums; forces' "
+                << "largest difference / tolerance = " << worst << std::endl;
+      EXPECT_EQ(gradient_mismatches, 0U) << dim << "D, " << n << " nodes";
+      EXPECT_LE(worst, 1.) << dim << "D, " << n << " nodes";
+    }
+}

@@ -75,6 +75,29 @@ namespace SoftRobot
 
 
 
+  // @sect4{The gradients and forces of a cell as products}
+  //
+  // The storage of the products of physics/point_tangent.h that give the
+  // displacement and velocity gradients at a cell's points and the forces
+  // of its stresses.
+  struct CellProducts
+  {
+    // The gradients of the scalar shape functions, [a][(q, J)], in rows of
+    // `gradient_stride` >= dim n_q (the rest zero).
+    std::vector<double> gradients;
+    unsigned int        gradient_stride = 0;
+    // The points' stresses times their weights, [(q, J)][column] in rows
+    // of `stress_stride`: the first Piola-Kirchhoff stress's component
+    // (c, J) in column c, the viscous stress's in column dim + c.
+    std::vector<double> stresses;
+    unsigned int        stress_stride = 0;
+    // The nodal values of the fields and the products.
+    std::vector<double> values;
+    std::vector<double> result;
+  };
+
+
+
   // @sect4{The work space of one thread}
   //
   // Arrays that the integral over a cell needs per shape function or per
@@ -110,6 +133,8 @@ namespace SoftRobot
     // the symmetric part has been completed from its lower triangle.
     TangentBlock tangent_block;
     TangentBlock damping_block;
+    // The gradients of the fields and the forces of the stresses.
+    CellProducts products;
     // The non-symmetric part of a cell matrix, added in full after the
     // symmetric part has been completed from its lower triangle.
     FullMatrix<double> nonsymmetric_matrix;

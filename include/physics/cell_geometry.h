@@ -85,6 +85,16 @@ namespace SoftRobot
     cell_gradients(const unsigned int           cell,
                    std::vector<Tensor<1, dim>> &gradients) const;
 
+    // The gradient of the scalar shape function a at point q of a cell.
+    Tensor<1, dim>
+    shape_gradient(const unsigned int cell,
+                   const unsigned int q,
+                   const unsigned int a) const
+    {
+      return reference_gradients[q * dofs_per_cell + shape_dofs[a * dim]] *
+             inverse_jacobians[cell * n_q_points + q];
+    }
+
     // The weight of point q of a cell (times the section factor).
     double
     weight(const unsigned int cell, const unsigned int q) const

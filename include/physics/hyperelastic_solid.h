@@ -157,6 +157,14 @@ namespace SoftRobot
              (viscous_cell(local) && local.request.second_matrix);
     }
 
+    // Whether the cell's shape gradients by dof are needed: by the
+    // matrices' point tangents and volume derivatives only.
+    static bool
+    shape_gradients_by_dof(const CellContribution<dim> &local)
+    {
+      return local.request.matrix || local.request.second_matrix;
+    }
+
     // Whether the cell's tangent block is symmetric: unless the viscous
     // stress adds its non-symmetric part.
     Symmetry

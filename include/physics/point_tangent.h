@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: LGPL-2.1-or-later
 
-// @sect3{A quadrature point's share of a cell matrix}
+// @sect3{A cell's sums over its points as matrix products}
 //
 // Every term of the tangent and damping matrices of this program is, at a
 // quadrature point, a bilinear form in the gradients of two vector-valued
@@ -50,6 +50,7 @@
 #include <deal.II/base/symmetric_tensor.h>
 #include <deal.II/base/tensor.h>
 #include <deal.II/lac/full_matrix.h>
+#include <deal.II/lac/vector.h>
 #include <physics/cell_geometry.h>
 
 namespace SoftRobot
@@ -122,6 +123,57 @@ namespace SoftRobot
                     TangentBlock            &block,
                     const Symmetry           symmetry,
                     FullMatrix<double>      &matrix);
+
+  // @sect4{The gradients and forces of a cell as products}
+  //
+  // The same product, with the gradients as either factor, gives the
+  // other two sums over a cell's shape functions and points. The gradient
+  // of a field at the points is $\sum_a u_{ac}\,\partial_J\varphi_a
+  // (\mathbf x_q)$: the $d \times n$ matrix of its nodal values times the
+  // $n \times d\,n_q$ matrix of the gradients, for the displacement and
+  // the velocity together. The forces of a first Piola-Kirchhoff stress
+  // are $f_{ac} = \sum_{(q,J)} \partial_J\varphi_a(\mathbf x_q)\,w_q
+  // P^q_{cJ}$: the gradients times the $d\,n_q \times d$ matrix of the
+  // weighted stresses, for the elastic and the viscous stress together.
+  // Point by point, both were sums with a load and a store per term (they
+  // took about 15 % of a run of experiment 1, doc/performance_discussion.md,
+  // item 42).
+
+  // The gradients of a cell's scalar shape functions at its points, by
+  // node; the stresses zero.
+  template <int dim>
+  void
+  reset_cell_products(const CellGeometry<dim> &geometry,
+                      const unsigned int       cell,
+                      CellProducts            &products);
+
+  // The gradients at the cell's points of the fields whose nodal values
+  // (in dof numbering) `fields` points to, into `*gradients[f]`.
+  template <int dim>
+  void
+  field_gradients(const CellGeometry<dim>                          &geometry,
+                  CellProducts                                     &products,
+                  const std::vector<const double *>                &fields,
+                  const std::vector<std::vector<Tensor<2, dim>> *> &gradients);
+
+  // Records the stress P of point q with its weight, as the elastic
+  // (`column` 0) or the viscous (1) stress.
+  template <int dim>
+  void
+  add_point_stress(const unsigned int    q,
+                   const unsigned int    column,
+                   const Tensor<2, dim> &P,
+                   const double          weight,
+                   CellProducts         &products);
+
+  // Adds the forces of the recorded stresses: the elastic ones to `force`,
+  // the viscous ones to `second_force`.
+  template <int dim>
+  void
+  add_stress_forces(const CellGeometry<dim> &geometry,
+                    CellProducts            &products,
+                    Vector<double>          &force,
+                    Vector<double>          &second_force);
 } // namespace SoftRobot
 
 #endif

@@ -40,9 +40,9 @@ namespace SoftRobot
       for (unsigned int i = 0; i < dofs_per_cell; ++i)
         reference_gradients.push_back(
           fe.shape_grad_component(i, quadrature.point(q), components[i]));
-    // cell_gradients() and the sums node by node of the physics
-    // (HyperelasticSolid::displacement_gradients()) rely on the components
-    // of a node sharing their scalar shape function.
+    // cell_gradients(), shape_gradient() and the sums node by node of the
+    // physics (the products of physics/point_tangent.h) rely on the
+    // components of a node sharing their scalar shape function.
     for (unsigned int q = 0; q < n_q_points; ++q)
       for (unsigned int a = 0; a < n_shape_functions; ++a)
         for (unsigned int c = 1; c < dim; ++c)
@@ -93,15 +93,10 @@ namespace SoftRobot
     gradients.resize(n_q_points * dofs_per_cell);
     for (unsigned int q = 0; q < n_q_points; ++q)
       {
-        const Tensor<2, dim> &inverse =
-          inverse_jacobians[cell * n_q_points + q];
-        const Tensor<1, dim> *reference =
-          &reference_gradients[q * dofs_per_cell];
         Tensor<1, dim> *result = &gradients[q * dofs_per_cell];
         for (unsigned int a = 0; a < n_shape_functions; ++a)
           {
-            const Tensor<1, dim> gradient =
-              reference[shape_dofs[a * dim]] * inverse;
+            const Tensor<1, dim> gradient = shape_gradient(cell, q, a);
             for (unsigned int c = 0; c < dim; ++c)
               result[shape_dofs[a * dim + c]] = gradient;
           }

@@ -205,9 +205,14 @@ namespace SoftRobot
     const unsigned int               cell = local.cell;
     const unsigned int               n    = geometry.dofs_per_cell;
     const std::vector<unsigned int> &comp = geometry.components;
-    const Tensor<1, dim> *grad_phi   = &local.workspace.shape_gradients[q * n];
-    const double          JxW        = geometry.weight(cell, q);
-    const NeoHookeanEnergy<dim> &law = *cell_law[cell];
+    // The gradients by dof, which only the matrices need (see
+    // cell_contribution()).
+    const Tensor<1, dim> *grad_phi =
+      shape_gradients_by_dof(local)
+        ? local.workspace.shape_gradients.data() + q * n
+        : nullptr;
+    const double                 JxW         = geometry.weight(cell, q);
+    const NeoHookeanEnergy<dim> &law         = *cell_law[cell];
     const bool                   with_matrix = local.request.matrix;
 
     Tensor<2, dim> F = H;
@@ -253,12 +258,10 @@ namespace SoftRobot
 
     // The force $\int\delta\mathbf E_i:\mathbf S = \int\mathbf
     // f_{c_i}\cdot\mathbf S\nabla_0\varphi_i$ with the first Piola-Kirchhoff
-    // stress $\mathbf P = \mathbf F\mathbf S$ formed once per point: a
-    // dot product per shape function.
+    // stress $\mathbf P = \mathbf F\mathbf S$, formed once per point and
+    // multiplied out with the other points' (add_stress_forces()).
     const SymmetricTensor<2, dim> &S = response.second_piola;
-    const Tensor<2, dim>           P = F * S;
-    for (unsigned int i = 0; i < n; ++i)
-      local.force(i) += (P[comp[i]] * grad_phi[i]) * JxW;
+    add_point_stress(q, 0, F * S, JxW, local.workspace.products);
 
     // The matrices, as fourth-order tensors of the point (point_tangent.h):
     // the tangent $F_{cI}\mathcal C_{IJKL}F_{kK} + \delta_{ck}S_{JL}$ with
@@ -330,16 +333,22 @@ namespace SoftRobot
   void
   HyperelasticSolid<dim>::cell_contribution(CellContribution<dim> &local) const
   {
-    const unsigned int           n        = geometry.dofs_per_cell;
-    const unsigned int           cell     = local.cell;
-    std::vector<Tensor<1, dim>> &grad_phi = local.workspace.shape_gradients;
-    geometry.cell_gradients(cell, grad_phi);
+    const unsigned int n    = geometry.dofs_per_cell;
+    const unsigned int cell = local.cell;
+    // The gradients by node for the forces and the fields' gradients, and
+    // by dof for the matrices.
+    CellProducts &products = local.workspace.products;
+    reset_cell_products(geometry, cell, products);
+    if (shape_gradients_by_dof(local))
+      geometry.cell_gradients(cell, local.workspace.shape_gradients);
     std::vector<Tensor<2, dim>> &H = local.workspace.displacement_gradients;
-    displacement_gradients(grad_phi, local.input_values[0], H);
     if (viscous_cell(local))
-      displacement_gradients(grad_phi,
-                             local.input_values[1],
-                             local.workspace.velocity_gradients);
+      field_gradients(geometry,
+                      products,
+                      {local.input_values[0], local.input_values[1]},
+                      {&H, &local.workspace.velocity_gradients});
+    else
+      field_gradients(geometry, products, {local.input_values[0]}, {&H});
     if (local.request.matrix)
       reset_tangent_block(geometry, local.workspace.tangent_block);
     if (local.request.second_matrix)
@@ -381,6 +390,7 @@ namespace SoftRobot
     for (unsigned int q = 0; q < geometry.n_q_points; ++q)
       add_point_contribution(q, H[q], response, local);
 
+    add_stress_forces(geometry, products, local.force, local.second_force);
     if (projected && viscous_cell(local) && !local.inverted)
       viscous->add_volumetric_contribution(projection.n_modes(),
                                            dilatation.viscous_stiffness,

@@ -50,8 +50,12 @@ namespace SoftRobot
       return;
     const unsigned int               n    = geometry.dofs_per_cell;
     const std::vector<unsigned int> &comp = geometry.components;
-    const Tensor<1, dim>            *grad_phi =
-      &local.workspace.shape_gradients[point.q * n];
+    // The gradients by dof: there only for a matrix (see
+    // HyperelasticSolid::cell_contribution()).
+    const Tensor<1, dim> *grad_phi =
+      (local.request.matrix || local.request.second_matrix)
+        ? local.workspace.shape_gradients.data() + point.q * n
+        : nullptr;
     const double             JxW = geometry.weight(cell, point.q);
     SymmetricTensor<4, dim> &D =
       viscosity[cell * geometry.n_q_points + point.q];
@@ -73,8 +77,7 @@ namespace SoftRobot
     if constexpr (dim == 3)
       if (point.volume_pressure != 0.)
         P_v += (point.volume_pressure * determinant(F)) * transpose(invert(F));
-    for (unsigned int i = 0; i < n; ++i)
-      local.second_force(i) += (P_v[comp[i]] * grad_phi[i]) * JxW;
+    add_point_stress(point.q, 1, P_v, JxW, local.workspace.products);
 
     if (point.tangent == nullptr && point.damping_tangent == nullptr)
       return;

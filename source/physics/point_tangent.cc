@@ -160,10 +160,12 @@ namespace SoftRobot
     }
 
     // The operands of a product: the n rows of $\mathbf X$ and the
-    // segments of s columns of $\mathbf Y$ (`stride`), K in between.
+    // segments of s columns of $\mathbf Y$ (`stride`), of which the first
+    // `columns` are formed, K in between.
     struct Product
     {
       unsigned int  n;
+      unsigned int  columns;
       unsigned int  n_segments;
       unsigned int  stride;
       unsigned int  K;
@@ -180,7 +182,7 @@ namespace SoftRobot
       constexpr unsigned int width     = lanes * vectors;
       const unsigned int     n_columns = p.n_segments * p.stride;
       for (unsigned int segment = 0; segment < p.n_segments; ++segment)
-        for (unsigned int b0 = 0; b0 < p.n; b0 += width)
+        for (unsigned int b0 = 0; b0 < p.columns; b0 += width)
           {
             const unsigned int j = segment * p.stride + b0;
             unsigned int       a = p.lower ? b0 / rows * rows : 0;
@@ -233,6 +235,25 @@ namespace SoftRobot
       return (has_avx2() && n > 4) ? 8 : 4;
     }
 
+    // The stride of `columns` columns: a multiple of their tiles' width.
+    unsigned int
+    padded(const unsigned int columns)
+    {
+      const unsigned int width = tile_width(columns);
+      return (columns + width - 1) / width * width;
+    }
+
+    void
+    form_product(const Product &product)
+    {
+#if defined(__x86_64__) && defined(__GNUC__)
+      if (has_avx2())
+        multiply_avx2(product);
+      else
+#endif
+        multiply_generic(product);
+    }
+
     // Multiplies out the points added since the last call.
     template <int dim>
     void
@@ -251,6 +272,7 @@ namespace SoftRobot
                        &block.left[a * capacity],
                        K * sizeof(double));
       const Product product{n,
+                            n,
                             dim * dim,
                             block.stride,
                             K,
@@ -258,12 +280,7 @@ namespace SoftRobot
                             block.right.data(),
                             block.symmetric,
                             block.values.data()};
-#if defined(__x86_64__) && defined(__GNUC__)
-      if (has_avx2())
-        multiply_avx2(product);
-      else
-#endif
-        multiply_generic(product);
+      form_product(product);
       block.pending_points = 0;
     }
   } // namespace
@@ -334,9 +351,8 @@ namespace SoftRobot
   void
   reset_tangent_block(const CellGeometry<dim> &geometry, TangentBlock &block)
   {
-    const unsigned int n     = geometry.n_shape_functions;
-    const unsigned int width = tile_width(n);
-    block.stride             = (n + width - 1) / width * width;
+    const unsigned int n = geometry.n_shape_functions;
+    block.stride         = padded(n);
     block.values.assign(n * dim * dim * block.stride, 0.);
     const unsigned int capacity = dim * geometry.n_q_points;
     block.left.resize(n * capacity);
@@ -383,7 +399,155 @@ namespace SoftRobot
 
 
 
+  // @sect4{The gradients and forces of a cell as products}
+  //
+  // The gradients by node, $G_{a,(q,J)} = \partial_J\varphi_a(\mathbf
+  // x_q)$, in rows padded to a multiple of the tiles' width; the padding
+  // is zero, so that they can also serve as the left factor of a product
+  // summed over all of a row.
+  template <int dim>
+  void
+  reset_cell_products(const CellGeometry<dim> &geometry,
+                      const unsigned int       cell,
+                      CellProducts            &products)
+  {
+    const unsigned int n      = geometry.n_shape_functions;
+    const unsigned int n_q    = geometry.n_q_points;
+    const unsigned int stride = padded(dim * n_q);
+    products.gradient_stride  = stride;
+    products.gradients.resize(n * stride);
+    for (unsigned int a = 0; a < n; ++a)
+      {
+        double *row = &products.gradients[a * stride];
+        for (unsigned int q = 0; q < n_q; ++q)
+          {
+            const Tensor<1, dim> gradient = geometry.shape_gradient(cell, q, a);
+            for (unsigned int J = 0; J < dim; ++J)
+              row[q * dim + J] = gradient[J];
+          }
+        for (unsigned int k = dim * n_q; k < stride; ++k)
+          row[k] = 0.;
+      }
+    products.stress_stride = padded(2 * dim);
+    products.stresses.assign(stride * products.stress_stride, 0.);
+  }
+
+
+
+  // $H^{(f)}_{c,(q,J)} = \sum_a u^{(f)}_{a c}\,G_{a,(q,J)}$ for the fields
+  // f: a product of the nodal values (rows (f, c)) with the gradients.
+  template <int dim>
+  void
+  field_gradients(const CellGeometry<dim>                          &geometry,
+                  CellProducts                                     &products,
+                  const std::vector<const double *>                &fields,
+                  const std::vector<std::vector<Tensor<2, dim>> *> &gradients)
+  {
+    const unsigned int n        = geometry.n_shape_functions;
+    const unsigned int n_q      = geometry.n_q_points;
+    const unsigned int stride   = products.gradient_stride;
+    const unsigned int n_fields = fields.size();
+    const unsigned int rows     = n_fields * dim;
+    products.values.resize(rows * n);
+    for (unsigned int f = 0; f < n_fields; ++f)
+      for (unsigned int c = 0; c < dim; ++c)
+        for (unsigned int a = 0; a < n; ++a)
+          products.values[(f * dim + c) * n + a] =
+            fields[f][geometry.shape_dofs[a * dim + c]];
+    products.result.assign(rows * stride, 0.);
+    form_product(Product{rows,
+                         dim * n_q,
+                         1,
+                         stride,
+                         n,
+                         products.values.data(),
+                         products.gradients.data(),
+                         false,
+                         products.result.data()});
+    for (unsigned int f = 0; f < n_fields; ++f)
+      {
+        std::vector<Tensor<2, dim>> &H = *gradients[f];
+        H.resize(n_q);
+        for (unsigned int q = 0; q < n_q; ++q)
+          for (unsigned int c = 0; c < dim; ++c)
+            for (unsigned int J = 0; J < dim; ++J)
+              H[q][c][J] =
+                products.result[(f * dim + c) * stride + q * dim + J];
+      }
+  }
+
+
+
+  template <int dim>
+  void
+  add_point_stress(const unsigned int    q,
+                   const unsigned int    column,
+                   const Tensor<2, dim> &P,
+                   const double          weight,
+                   CellProducts         &products)
+  {
+    for (unsigned int J = 0; J < dim; ++J)
+      {
+        double *row =
+          &products
+             .stresses[(q * dim + J) * products.stress_stride + column * dim];
+        for (unsigned int c = 0; c < dim; ++c)
+          row[c] = weight * P[c][J];
+      }
+  }
+
+
+
+  // $f^{(s)}_{a c} = \sum_{(q,J)} G_{a,(q,J)}\,w_q P^{(s)}_{q,cJ}$ for both
+  // stresses at once: the gradients times the stresses' columns.
+  template <int dim>
+  void
+  add_stress_forces(const CellGeometry<dim> &geometry,
+                    CellProducts            &products,
+                    Vector<double>          &force,
+                    Vector<double>          &second_force)
+  {
+    const unsigned int n      = geometry.n_shape_functions;
+    const unsigned int stride = products.stress_stride;
+    products.result.assign(n * stride, 0.);
+    form_product(Product{n,
+                         2 * dim,
+                         1,
+                         stride,
+                         products.gradient_stride,
+                         products.gradients.data(),
+                         products.stresses.data(),
+                         false,
+                         products.result.data()});
+    for (unsigned int a = 0; a < n; ++a)
+      for (unsigned int c = 0; c < dim; ++c)
+        {
+          const unsigned int i = geometry.shape_dofs[a * dim + c];
+          force(i) += products.result[a * stride + c];
+          second_force(i) += products.result[a * stride + dim + c];
+        }
+  }
+
+
+
 #define SOFT_ROBOT_INSTANTIATE(dim)                                         \
+  template void reset_cell_products<dim>(const CellGeometry<dim> &,         \
+                                         const unsigned int,                \
+                                         CellProducts &);                   \
+  template void field_gradients<dim>(                                       \
+    const CellGeometry<dim> &,                                              \
+    CellProducts &,                                                         \
+    const std::vector<const double *> &,                                    \
+    const std::vector<std::vector<Tensor<2, dim>> *> &);                    \
+  template void add_point_stress<dim>(const unsigned int,                   \
+                                      const unsigned int,                   \
+                                      const Tensor<2, dim> &,               \
+                                      const double,                         \
+                                      CellProducts &);                      \
+  template void add_stress_forces<dim>(const CellGeometry<dim> &,           \
+                                       CellProducts &,                      \
+                                       Vector<double> &,                    \
+                                       Vector<double> &);                   \
   template void add_pulled_tangent<dim>(const Tensor<2, dim> &,             \
                                         const SymmetricTensor<4, dim> &,    \
                                         const Tensor<2, dim> &,             \
