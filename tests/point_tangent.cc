@@ -58,6 +58,22 @@ namespace
     double                      weight;
   };
 
+  // A cell of n shape functions per component and n_q points, its dofs
+  // numbered in reverse of the blocks' order.
+  template <int dim>
+  CellGeometry<dim>
+  test_geometry(const unsigned int n, const unsigned int n_q)
+  {
+    CellGeometry<dim> geometry;
+    geometry.n_shape_functions = n;
+    geometry.dofs_per_cell     = n * dim;
+    geometry.n_q_points        = n_q;
+    geometry.shape_dofs.resize(n * dim);
+    for (unsigned int i = 0; i < n * dim; ++i)
+      geometry.shape_dofs[i] = n * dim - 1 - i;
+    return geometry;
+  }
+
   // Adds `n_points` random points to a block of a cell with `n` shape
   // functions per component and `n_q` points and compares the block with
   // the direct sum; returns the largest ratio of difference to tolerance.
@@ -69,13 +85,7 @@ namespace
                       const Symmetry     symmetry,
                       std::mt19937      &rng)
   {
-    CellGeometry<dim> geometry;
-    geometry.n_shape_functions = n;
-    geometry.dofs_per_cell     = n * dim;
-    geometry.n_q_points        = n_q;
-    geometry.shape_dofs.resize(n * dim);
-    for (unsigned int i = 0; i < n * dim; ++i)
-      geometry.shape_dofs[i] = n * dim - 1 - i;
+    const CellGeometry<dim> geometry = test_geometry<dim>(n, n_q);
 
     std::uniform_real_distribution<double> uniform(-1., 1.);
     std::vector<RandomPoint<dim>>          points(n_points);
@@ -152,6 +162,19 @@ namespace
             }
     return worst;
   }
+
+  // The cells of the tests, (shape functions, points): the quadratic
+  // tensor-product cell ($3^d$ of both) and the linear simplex (d + 1 shape
+  // functions, one point), whose narrow blocks take the narrow tiles.
+  template <int dim>
+  std::vector<std::pair<unsigned int, unsigned int>>
+  test_cells()
+  {
+    unsigned int n_quadratic = 1;
+    for (unsigned int d = 0; d < dim; ++d)
+      n_quadratic *= 3;
+    return {{n_quadratic, n_quadratic}, {dim + 1, 1}};
+  }
 } // namespace
 
 
@@ -160,16 +183,7 @@ TYPED_TEST(PointTangentTest, CellProductEqualsTheSumOverPoints)
 {
   constexpr int dim = TypeParam::value;
   std::mt19937  rng(2024 + dim);
-  unsigned int  n_quadratic = 1;
-  for (unsigned int d = 0; d < dim; ++d)
-    n_quadratic *= 3;
-  // The quadratic tensor-product cell (n = n_q = 3^dim) and the linear
-  // simplex (n = dim + 1 shape functions, one point), whose narrow blocks
-  // take the narrow tiles.
-  const std::pair<unsigned int, unsigned int> cells[] = {{n_quadratic,
-                                                          n_quadratic},
-                                                         {dim + 1, 1}};
-  for (const auto &[n, n_q] : cells)
+  for (const auto &[n, n_q] : test_cells<dim>())
     for (const Symmetry symmetry : {Symmetry::general, Symmetry::symmetric})
       for (const unsigned int n_points : {n_q, n_q - 1, 2 * n_q + 1})
         {
@@ -206,22 +220,10 @@ TYPED_TEST(PointTangentTest, FieldGradientsAndForcesAreTheSumsOverPoints)
   constexpr int                          dim = TypeParam::value;
   std::mt19937                           rng(4711 + dim);
   std::uniform_real_distribution<double> uniform(-1., 1.);
-  unsigned int                           n_quadratic = 1;
-  for (unsigned int d = 0; d < dim; ++d)
-    n_quadratic *= 3;
-  const std::pair<unsigned int, unsigned int> cells[] = {{n_quadratic,
-                                                          n_quadratic},
-                                                         {dim + 1, 1}};
-  for (const auto &[n, n_q] : cells)
+  for (const auto &[n, n_q] : test_cells<dim>())
     {
-      CellGeometry<dim> geometry;
+      CellGeometry<dim> geometry = test_geometry<dim>(n, n_q);
       geometry.n_cells           = 1;
-      geometry.n_shape_functions = n;
-      geometry.dofs_per_cell     = n * dim;
-      geometry.n_q_points        = n_q;
-      geometry.shape_dofs.resize(n * dim);
-      for (unsigned int i = 0; i < n * dim; ++i)
-        geometry.shape_dofs[i] = n * dim - 1 - i;
       geometry.reference_gradients.resize(n_q * n * dim);
       for (unsigned int q = 0; q < n_q; ++q)
         {
