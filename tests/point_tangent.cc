@@ -210,9 +210,9 @@ TYPED_TEST(PointTangentTest, CellProductEqualsTheSumOverPoints)
 // add_stress_forces()) against the sums formed directly in long double: a
 // cell with random reference gradients and inverse Jacobians, random nodal
 // values, stresses and weights, the quadratic cell and the linear simplex.
-// The gradients, sums of n products in the order of the nodes, must be the
-// same to the bit as the sums of HyperelasticSolid::displacement_gradients()
-// (the order the products keep); the forces, sums of d n_q products of
+// The gradients, sums of n products in the order of the nodes (the order
+// the products keep), must be the same to the bit as those sums formed
+// directly in double; the forces, sums of d n_q products of
 // three factors, within $\gamma_{d n_q + 2}$ times their terms' absolute
 // values.
 TYPED_TEST(PointTangentTest, FieldGradientsAndForcesAreTheSumsOverPoints)

@@ -175,14 +175,6 @@ namespace SoftRobot
                : Symmetry::general;
     }
 
-    // The cell's displacement gradients at its quadrature points, from
-    // its nodal values and its shape-function gradients [q][i] (also used
-    // for the velocity gradients).
-    void
-    displacement_gradients(const std::vector<Tensor<1, dim>> &grad_phi,
-                           const double                      *cell_u,
-                           std::vector<Tensor<2, dim>>       &H) const;
-
     // The number of dilatation modes of the parameters' formulation.
     static unsigned int
     dilatation_modes(const Parameters::AllParameters &parameters,

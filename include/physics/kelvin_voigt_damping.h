@@ -153,7 +153,10 @@ namespace SoftRobot
     // tangent (from which the viscosity is recorded).
     struct PointKinematics
     {
-      unsigned int                   q;
+      unsigned int q;
+      // The gradients of the cell's shape functions at the point, by dof;
+      // null where no matrix is formed.
+      const Tensor<1, dim>          *grad_phi = nullptr;
       const Tensor<2, dim>          *F;
       const Tensor<2, dim>          *L;
       const SymmetricTensor<4, dim> *material_tangent;

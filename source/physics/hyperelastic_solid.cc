@@ -89,34 +89,6 @@ namespace SoftRobot
 
 
 
-  // @sect4{HyperelasticSolid::displacement_gradients}
-  //
-  // $\mathbf H = \nabla_0\mathbf u = \sum_i u_i\,\mathbf e_{c_i}\otimes
-  // \nabla_0\varphi_i$ at every quadrature point of the cell, node by
-  // node: the node's displacement vector times the gradient its components
-  // share.
-  template <int dim>
-  void
-  HyperelasticSolid<dim>::displacement_gradients(
-    const std::vector<Tensor<1, dim>> &grad_phi,
-    const double                      *cell_u,
-    std::vector<Tensor<2, dim>>       &H) const
-  {
-    const unsigned int               n_q  = geometry.n_q_points;
-    const unsigned int               n    = geometry.dofs_per_cell;
-    const std::vector<unsigned int> &dofs = geometry.shape_dofs;
-    H.assign(n_q, Tensor<2, dim>());
-    for (unsigned int q = 0; q < n_q; ++q)
-      for (unsigned int a = 0; a < geometry.n_shape_functions; ++a)
-        {
-          const Tensor<1, dim> &gradient = grad_phi[q * n + dofs[a * dim]];
-          for (unsigned int c = 0; c < dim; ++c)
-            H[q][c] += cell_u[dofs[a * dim + c]] * gradient;
-        }
-  }
-
-
-
   // @sect4{HyperelasticSolid::cell_dilatation}
   //
   // The projected-dilatation formulations (see the class documentation):
@@ -275,9 +247,10 @@ namespace SoftRobot
     if (viscous_cell(local))
       {
         typename KelvinVoigtDamping<dim>::PointKinematics point;
-        point.q = q;
-        point.F = &F;
-        point.L = &local.workspace.velocity_gradients[q];
+        point.q        = q;
+        point.grad_phi = grad_phi;
+        point.F        = &F;
+        point.L        = &local.workspace.velocity_gradients[q];
         point.material_tangent =
           with_tangent ? &response.material_tangent : nullptr;
         point.tangent = with_matrix ? &tangent : nullptr;
@@ -452,10 +425,10 @@ namespace SoftRobot
   HyperelasticSolid<dim>::cell_averages(const unsigned int cell,
                                         const double      *cell_u) const
   {
-    std::vector<Tensor<1, dim>> grad_phi;
-    geometry.cell_gradients(cell, grad_phi);
+    CellProducts products;
+    reset_cell_products(geometry, cell, products);
     std::vector<Tensor<2, dim>> H;
-    displacement_gradients(grad_phi, cell_u, H);
+    field_gradients(geometry, products, {cell_u}, {&H});
     const NeoHookeanEnergy<dim> &law = *cell_law[cell];
     CellContribution<dim>        local;
     local.cell = cell;

@@ -48,16 +48,11 @@ namespace SoftRobot
     const double       zeta = cell_zeta[cell];
     if (!(zeta > 0.))
       return;
-    const unsigned int               n    = geometry.dofs_per_cell;
-    const std::vector<unsigned int> &comp = geometry.components;
-    // The gradients by dof: there only for a matrix (see
-    // HyperelasticSolid::cell_contribution()).
-    const Tensor<1, dim> *grad_phi =
-      (local.request.matrix || local.request.second_matrix)
-        ? local.workspace.shape_gradients.data() + point.q * n
-        : nullptr;
-    const double             JxW = geometry.weight(cell, point.q);
-    SymmetricTensor<4, dim> &D =
+    const unsigned int               n        = geometry.dofs_per_cell;
+    const std::vector<unsigned int> &comp     = geometry.components;
+    const Tensor<1, dim>            *grad_phi = point.grad_phi;
+    const double                     JxW      = geometry.weight(cell, point.q);
+    SymmetricTensor<4, dim>         &D =
       viscosity[cell * geometry.n_q_points + point.q];
     if (local.request.store_viscosity)
       {
