@@ -793,10 +793,10 @@ namespace SoftRobot
         "Relative tolerance of Newton's method in the last load step of the "
         "static equilibrium, the state the motion starts from (times the "
         "same force scale as Nonlinear solver/Relative tolerance, and never "
-        "above it; 0: that tolerance). The initial acceleration is the "
-        "residual of this state divided by the masses: a residual left where "
-        "little mass is, at the time steps' tolerance, can invert elements "
-        "in the first step (doc/performance_discussion.md, item 41).");
+        "above it; 0: that tolerance). The residual this state keeps is the "
+        "initial acceleration times the masses: with the start at 1e-5 the "
+        "planar pendulum's first step was cut back, with it at 1e-6 not "
+        "(doc/performance_discussion.md, item 41).");
       prm.leave_subsection();
     }
 
