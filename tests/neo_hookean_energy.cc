@@ -688,3 +688,78 @@ TYPED_TEST(NeoHookeanEnergyTest, PositiveSemidefinitePartOfTangent)
     EXPECT_TRUE(found_indefinite)
       << "no indefinite tangent among the states tested";
 }
+
+
+
+// @sect4{The mean-dilatation pieces add up to the whole energy}
+//
+// evaluate_with_pressure() differentiates the isochoric energy plus $p\,(J
+// - 1)$. With the pressure of the point's own volume ratio, $p = U'(J)$,
+// its stress must be the whole energy's stress, and its tangent plus
+// $U''(J)\,(J\mathbf C^{-1})\otimes(J\mathbf C^{-1})$ (the second
+// derivative of $U(J(\mathbf E))$ beyond the pressure's) the whole
+// energy's tangent; its energy plus $U(J)$ the whole energy. evaluate() is
+// checked against the AD helper above, so this checks the pressure's route
+// through the same independent reference. In 1D and 2D there is no
+// volumetric part, and both routes must agree as they are. The inverse of
+// $\mathbf C$ and the three volumetric functions are formed in plain
+// numbers from $\mathbf F$, and with $\kappa = 100\mu$ the volumetric terms
+// dominate and cancel by a factor of up to about 100: the tolerance
+// $10^{-12}$ is about 50 times the round-off that leaves.
+TYPED_TEST(NeoHookeanEnergyTest, PressureFormAddsUpToTheEnergy)
+{
+  constexpr int               dim = TypeParam::value;
+  const NeoHookeanEnergy<dim> material(shear_modulus, bulk_modulus);
+
+  double worst_error = 0.;
+  for (const Tensor<2, dim> &F :
+       random_deformation_gradients<dim>(n_samples, 5))
+    {
+      const Tensor<2, dim>          H = displacement_gradient<dim>(F);
+      const SymmetricTensor<2, dim> E =
+        NeoHookeanEnergy<dim>::green_lagrange_strain(H);
+      const double          t = NeoHookeanEnergy<dim>::volume_change(E);
+      MaterialResponse<dim> whole, split, split_stress;
+      material.evaluate(H, whole);
+      material.evaluate_with_pressure(H,
+                                      material.volumetric_pressure(t),
+                                      true,
+                                      split);
+      material.evaluate_with_pressure(H,
+                                      material.volumetric_pressure(t),
+                                      false,
+                                      split_stress);
+
+      SymmetricTensor<4, dim> tangent = split.material_tangent;
+      if constexpr (dim == 3)
+        {
+          const SymmetricTensor<2, dim> J_C_inverse =
+            determinant(F) * invert(symmetrize(transpose(F) * F));
+          tangent += material.volumetric_stiffness(t) *
+                     outer_product(J_C_inverse, J_C_inverse);
+        }
+      const double energy_error =
+        std::abs(split.energy + material.volumetric_energy(t) - whole.energy) /
+        std::abs(whole.energy);
+      const double stress_error =
+        (split.second_piola - whole.second_piola).norm() /
+        whole.second_piola.norm();
+      const double stress_only_error =
+        (split_stress.second_piola - whole.second_piola).norm() /
+        whole.second_piola.norm();
+      const double tangent_error = (tangent - whole.material_tangent).norm() /
+                                   whole.material_tangent.norm();
+      EXPECT_LE(energy_error, 1e-12) << "F = " << F;
+      EXPECT_LE(stress_error, 1e-12) << "F = " << F;
+      EXPECT_LE(stress_only_error, 1e-12) << "F = " << F;
+      EXPECT_LE(tangent_error, 1e-12) << "F = " << F;
+      worst_error = std::max({worst_error,
+                              energy_error,
+                              stress_error,
+                              stress_only_error,
+                              tangent_error});
+    }
+  std::cout << "  dim = " << dim
+            << ": worst relative difference from the whole energy "
+            << worst_error << std::endl;
+}

@@ -103,6 +103,14 @@ namespace SoftRobot
 
 
 
+  namespace internal
+  {
+    template <typename Number>
+    struct StrainInvariants;
+  }
+
+
+
   // @sect4{The class NeoHookeanEnergy}
   template <int dim>
   class NeoHookeanEnergy
@@ -133,9 +141,10 @@ namespace SoftRobot
                     MaterialResponse<dim> &response) const;
 
     // The same as evaluate(), through deal.II's Differentiation::AD helper
-    // with dynamically sized nested Sacado numbers. It is about fifteen
-    // times slower (it allocates memory for every derivative), and the
-    // tests use it as the independent reference for evaluate().
+    // with dynamically sized nested Sacado numbers, in the components of
+    // $\mathbf E$ in every dimension. It is many times slower (it
+    // allocates memory for every derivative), and the tests use it as the
+    // independent reference for evaluate().
     void
     evaluate_with_ad_helper(const Tensor<2, dim>  &displacement_gradient,
                             MaterialResponse<dim> &response) const;
@@ -215,6 +224,14 @@ namespace SoftRobot
     {
       return kappa;
     }
+
+    // The 3D energy as a function of the invariants of $\mathbf E$ (see
+    // internal::strain_invariants()), which is how evaluate() and
+    // evaluate_stress() differentiate it.
+    template <typename Number>
+    Number
+    energy_of_invariants(
+      const internal::StrainInvariants<Number> &invariants) const;
 
   private:
     const double mu;
@@ -403,14 +420,22 @@ namespace SoftRobot
   NeoHookeanEnergy<dim>::energy(const SymmetricTensor<2, dim, Number> &E) const
   {
     if constexpr (dim == 3)
-      {
-        const internal::StrainInvariants<Number> invariants =
-          internal::strain_invariants(E);
-        return mu * internal::isochoric_energy_3d(invariants) +
-               0.25 * kappa * internal::d_minus_log1p(invariants.d);
-      }
+      return energy_of_invariants(internal::strain_invariants(E));
     else
       return isochoric_energy(E);
+  }
+
+
+
+  template <int dim>
+  template <typename Number>
+  Number
+  NeoHookeanEnergy<dim>::energy_of_invariants(
+    const internal::StrainInvariants<Number> &invariants) const
+  {
+    Number result = mu * internal::isochoric_energy_3d(invariants);
+    result += 0.25 * kappa * internal::d_minus_log1p(invariants.d);
+    return result;
   }
 } // namespace SoftRobot
 
