@@ -376,11 +376,19 @@ namespace SoftRobot
       return invariants;
     }
 
-    // The isochoric neo-Hookean energy per unit shear modulus.
+    // The isochoric neo-Hookean energy per unit shear modulus. Outside the
+    // series' range $g$ and $h$ share the one power $(1+d)^{-1/3}$.
     template <typename Number>
     Number
     isochoric_energy_3d(const StrainInvariants<Number> &e)
     {
+      using std::pow;
+      if (std::abs(scalar_value(e.d)) >= series_limit)
+        {
+          const Number g = pow(1. + e.d, -1. / 3.) - 1.;
+          const Number h = 3. * g + e.d;
+          return 0.5 * (h - 4. * e.I2 - 8. * e.I3 + 2. * e.I1 * g);
+        }
       return 0.5 * (cube_root_remainder(e.d) - 4. * e.I2 - 8. * e.I3 +
                     2. * e.I1 * inverse_cube_root_minus_one(e.d));
     }

@@ -48,7 +48,18 @@ namespace SoftRobot
   SymmetricTensor<2, dim>
   NeoHookeanEnergy<dim>::green_lagrange_strain(const Tensor<2, dim> &H)
   {
-    return symmetrize(H) + 0.5 * symmetrize(transpose(H) * H);
+    // $E_{ij} = \frac12(H_{ij} + H_{ji}) + \frac12 H_{ki}H_{kj}$, component
+    // by component.
+    SymmetricTensor<2, dim> E;
+    for (unsigned int i = 0; i < dim; ++i)
+      for (unsigned int j = i; j < dim; ++j)
+        {
+          double HtH = 0.;
+          for (unsigned int k = 0; k < dim; ++k)
+            HtH += H[k][i] * H[k][j];
+          E[i][j] = 0.5 * (H[i][j] + H[j][i]) + 0.5 * HtH;
+        }
+    return E;
   }
 
 
@@ -367,23 +378,31 @@ namespace SoftRobot
   {
     const SymmetricTensor<2, dim> E =
       green_lagrange_strain(displacement_gradient);
+    // The energy of the response is the isochoric one: in 3D its value is
+    // taken from the differentiated energy before the pressure term is
+    // added, in 1D and 2D it is the differentiated energy.
     if constexpr (dim == 3)
-      // (Every intermediate is stored as a number of the AD type: a single
-      // expression returned from the lambda would leave Sacado's expression
-      // templates referring to destroyed temporaries.)
-      differentiate_through_invariants(
-        E,
-        [this, pressure](const auto &invariants) {
-          using std::sqrt;
-          using Number        = std::decay_t<decltype(invariants.d)>;
-          const Number root   = sqrt(1. + invariants.d);
-          const Number change = invariants.d / (1. + root);
-          Number       result = mu * internal::isochoric_energy_3d(invariants);
-          result += pressure * change;
-          return result;
-        },
-        with_tangent,
-        response);
+      {
+        double isochoric = 0.;
+        // (Every intermediate is stored as a number of the AD type: a
+        // single expression returned from the lambda would leave Sacado's
+        // expression templates referring to destroyed temporaries.)
+        differentiate_through_invariants(
+          E,
+          [this, pressure, &isochoric](const auto &invariants) {
+            using std::sqrt;
+            using Number        = std::decay_t<decltype(invariants.d)>;
+            const Number root   = sqrt(1. + invariants.d);
+            const Number change = invariants.d / (1. + root);
+            Number result = mu * internal::isochoric_energy_3d(invariants);
+            isochoric     = internal::scalar_value(result);
+            result += pressure * change;
+            return result;
+          },
+          with_tangent,
+          response);
+        response.energy = isochoric;
+      }
     else if (with_tangent)
       differentiate_twice<dim>(
         E,
@@ -394,7 +413,6 @@ namespace SoftRobot
         E,
         [this](const auto &E_ad) { return isochoric_energy(E_ad); },
         response);
-    response.energy = isochoric_energy(E);
   }
 
 

@@ -417,16 +417,32 @@ namespace SoftRobot
     products.gradient_stride  = stride;
     products.gradients.resize(n * stride);
     for (unsigned int a = 0; a < n; ++a)
+      for (unsigned int k = dim * n_q; k < stride; ++k)
+        products.gradients[a * stride + k] = 0.;
+    // Point by point, with the inverse Jacobian of the point in local
+    // numbers (the same products as CellGeometry::shape_gradient()).
+    for (unsigned int q = 0; q < n_q; ++q)
       {
-        double *row = &products.gradients[a * stride];
-        for (unsigned int q = 0; q < n_q; ++q)
+        const Tensor<2, dim> &inverse_jacobian =
+          geometry.inverse_jacobians[cell * n_q + q];
+        double J_inv[dim][dim];
+        for (unsigned int i = 0; i < dim; ++i)
+          for (unsigned int J = 0; J < dim; ++J)
+            J_inv[i][J] = inverse_jacobian[i][J];
+        for (unsigned int a = 0; a < n; ++a)
           {
-            const Tensor<1, dim> gradient = geometry.shape_gradient(cell, q, a);
+            const Tensor<1, dim> &reference =
+              geometry.reference_gradients[q * geometry.dofs_per_cell +
+                                           geometry.shape_dofs[a * dim]];
+            double *entry = &products.gradients[a * stride + q * dim];
             for (unsigned int J = 0; J < dim; ++J)
-              row[q * dim + J] = gradient[J];
+              {
+                double sum = 0.;
+                for (unsigned int i = 0; i < dim; ++i)
+                  sum += reference[i] * J_inv[i][J];
+                entry[J] = sum;
+              }
           }
-        for (unsigned int k = dim * n_q; k < stride; ++k)
-          row[k] = 0.;
       }
     products.stress_stride = padded(2 * dim);
     products.stresses.assign(stride * products.stress_stride, 0.);
