@@ -685,8 +685,10 @@ TYPED_TEST(NeoHookeanEnergyTest, PositiveSemidefinitePartOfTangent)
                     1e-12 * scale * scale);
       }
   if (dim == 3)
-    EXPECT_TRUE(found_indefinite)
-      << "no indefinite tangent among the states tested";
+    {
+      EXPECT_TRUE(found_indefinite)
+        << "no indefinite tangent among the states tested";
+    }
 }
 
 

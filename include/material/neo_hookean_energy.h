@@ -234,6 +234,12 @@ namespace SoftRobot
       const internal::StrainInvariants<Number> &invariants) const;
 
   private:
+    // What evaluate() and evaluate_stress() share.
+    void
+    differentiate(const Tensor<2, dim>  &displacement_gradient,
+                  const bool             with_tangent,
+                  MaterialResponse<dim> &response) const;
+
     const double mu;
     const double kappa;
   };

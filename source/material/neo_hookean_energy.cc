@@ -322,19 +322,7 @@ namespace SoftRobot
   NeoHookeanEnergy<dim>::evaluate(const Tensor<2, dim>  &displacement_gradient,
                                   MaterialResponse<dim> &response) const
   {
-    if constexpr (dim == 3)
-      differentiate_through_invariants(
-        green_lagrange_strain(displacement_gradient),
-        [this](const auto &invariants) {
-          return energy_of_invariants(invariants);
-        },
-        true,
-        response);
-    else
-      differentiate_twice<dim>(
-        green_lagrange_strain(displacement_gradient),
-        [this](const auto &E) { return energy(E); },
-        response);
+    differentiate(displacement_gradient, true, response);
   }
 
 
@@ -345,19 +333,36 @@ namespace SoftRobot
     const Tensor<2, dim>  &displacement_gradient,
     MaterialResponse<dim> &response) const
   {
+    differentiate(displacement_gradient, false, response);
+  }
+
+
+
+  // The energy in its invariants in 3D, in the components of $\mathbf E$
+  // otherwise, differentiated once or twice.
+  template <int dim>
+  void
+  NeoHookeanEnergy<dim>::differentiate(
+    const Tensor<2, dim>  &displacement_gradient,
+    const bool             with_tangent,
+    MaterialResponse<dim> &response) const
+  {
+    const SymmetricTensor<2, dim> E =
+      green_lagrange_strain(displacement_gradient);
     if constexpr (dim == 3)
       differentiate_through_invariants(
-        green_lagrange_strain(displacement_gradient),
+        E,
         [this](const auto &invariants) {
           return energy_of_invariants(invariants);
         },
-        false,
+        with_tangent,
         response);
+    else if (with_tangent)
+      differentiate_twice<dim>(
+        E, [this](const auto &E_ad) { return energy(E_ad); }, response);
     else
       differentiate_once<dim>(
-        green_lagrange_strain(displacement_gradient),
-        [this](const auto &E) { return energy(E); },
-        response);
+        E, [this](const auto &E_ad) { return energy(E_ad); }, response);
   }
 
 
@@ -376,19 +381,23 @@ namespace SoftRobot
     const bool             with_tangent,
     MaterialResponse<dim> &response) const
   {
-    const SymmetricTensor<2, dim> E =
-      green_lagrange_strain(displacement_gradient);
-    // The energy of the response is the isochoric one: in 3D its value is
-    // taken from the differentiated energy before the pressure term is
-    // added, in 1D and 2D it is the differentiated energy.
-    if constexpr (dim == 3)
+    // In 1D and 2D the energy is the isochoric energy, and there is no
+    // pressure term. In 3D the energy of the response is the isochoric
+    // one, taken from the differentiated energy before the pressure term
+    // is added.
+    if constexpr (dim != 3)
+      {
+        (void)pressure;
+        differentiate(displacement_gradient, with_tangent, response);
+      }
+    else
       {
         double isochoric = 0.;
         // (Every intermediate is stored as a number of the AD type: a
         // single expression returned from the lambda would leave Sacado's
         // expression templates referring to destroyed temporaries.)
         differentiate_through_invariants(
-          E,
+          green_lagrange_strain(displacement_gradient),
           [this, pressure, &isochoric](const auto &invariants) {
             using std::sqrt;
             using Number        = std::decay_t<decltype(invariants.d)>;
@@ -403,16 +412,6 @@ namespace SoftRobot
           response);
         response.energy = isochoric;
       }
-    else if (with_tangent)
-      differentiate_twice<dim>(
-        E,
-        [this](const auto &E_ad) { return isochoric_energy(E_ad); },
-        response);
-    else
-      differentiate_once<dim>(
-        E,
-        [this](const auto &E_ad) { return isochoric_energy(E_ad); },
-        response);
   }
 
 
