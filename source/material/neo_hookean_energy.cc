@@ -156,7 +156,7 @@ namespace SoftRobot
 
 
 
-    // @sect5{The 3D energies through their invariants}
+    // @sect4{The 3D energies through their invariants}
     //
     // In 3D both energies depend on $\mathbf E$ only through its invariants
     // $I_1 = \mathrm{tr}\,\mathbf E$, $I_2 = \frac12(I_1^2 -
