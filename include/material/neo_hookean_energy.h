@@ -333,25 +333,6 @@ namespace SoftRobot
       return result;
     }
 
-    template <typename Number>
-    Number
-    inverse_cube_root_minus_one(const Number &d)
-    {
-      using std::pow;
-      if (std::abs(scalar_value(d)) >= series_limit)
-        return pow(1. + d, -1. / 3.) - 1.;
-      return cube_root_series(d, 1);
-    }
-
-    template <typename Number>
-    Number
-    cube_root_remainder(const Number &d)
-    {
-      using std::pow;
-      if (std::abs(scalar_value(d)) >= series_limit)
-        return 3. * (pow(1. + d, -1. / 3.) - 1.) + d;
-      return 3. * cube_root_series(d, 2);
-    }
   } // namespace internal
 
 
@@ -382,8 +363,9 @@ namespace SoftRobot
       return invariants;
     }
 
-    // The isochoric neo-Hookean energy per unit shear modulus. Outside the
-    // series' range $g$ and $h$ share the one power $(1+d)^{-1/3}$.
+    // The isochoric neo-Hookean energy per unit shear modulus, with $g$ and
+    // $h$ from their series or, outside the series' range, from the one
+    // power $(1+d)^{-1/3}$.
     template <typename Number>
     Number
     isochoric_energy_3d(const StrainInvariants<Number> &e)
@@ -395,8 +377,9 @@ namespace SoftRobot
           const Number h = 3. * g + e.d;
           return 0.5 * (h - 4. * e.I2 - 8. * e.I3 + 2. * e.I1 * g);
         }
-      return 0.5 * (cube_root_remainder(e.d) - 4. * e.I2 - 8. * e.I3 +
-                    2. * e.I1 * inverse_cube_root_minus_one(e.d));
+      const Number g = cube_root_series(e.d, 1);
+      const Number h = 3. * cube_root_series(e.d, 2);
+      return 0.5 * (h - 4. * e.I2 - 8. * e.I3 + 2. * e.I1 * g);
     }
   } // namespace internal
 
