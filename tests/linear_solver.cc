@@ -17,7 +17,9 @@
 //   new eigenvalue estimate), and without the clearing it does not;
 // - the operator complexity counted from ML's levels is ML's own (to the
 //   few entries by which ML's records of the coarse matrices differ);
-// - the names of the direct solvers are the classes Amesos creates.
+// - the names of the direct solvers are the classes Amesos creates;
+// - MUMPS's back substitution calls the program's dgemm_ and dtrsm_, whose
+//   single-column calls give what OpenBLAS's routines give.
 // Besides, the tests check the solver's contract: exact solutions of the
 // direct solvers, the tolerance of the iterative ones, StepFailure when a
 // factorization or an iteration fails, and the statistics.
@@ -39,8 +41,10 @@
 #include <Epetra_CrsMatrix.h>
 #include <Epetra_LinearProblem.h>
 #include <Teuchos_ParameterList.hpp>
+#include <algorithm>
 #include <cmath>
 #include <core/exceptions.h>
+#include <cstdint>
 #include <deal.II/base/conditional_ostream.h>
 #include <deal.II/base/function.h>
 #include <deal.II/base/mpi.h>
@@ -68,6 +72,7 @@
 #include <memory>
 #include <ml_MultiLevelPreconditioner.h>
 #include <solvers/linear_solver.h>
+#include <solvers/single_column_blas.h>
 #include <string>
 #include <vector>
 
@@ -833,7 +838,12 @@ TYPED_TEST(LinearSolverTest, SymmetricFactorizationSolvesTheSymmetricPart)
   solver.prepare(matrix);
   EXPECT_EQ(solver.solver_in_use(),
             serial ? "MUMPS symmetric" : "Amesos_Mumps");
+  const std::uint64_t forwarded_before = SingleColumnBlas::n_forwarded_calls();
   solver.solve(rhs, solution);
+  // MUMPS's back substitution calls the program's dgemm_ and dtrsm_, which
+  // hand its single-column calls to dgemv and dtrsv (SingleColumnBlas).
+  if (serial)
+    EXPECT_GT(SingleColumnBlas::n_forwarded_calls(), forwarded_before);
   const double residual = relative_residual(matrix, solution, rhs);
   EXPECT_LT(residual, 1e-12);
   EXPECT_EQ(max_difference(matrix, matrix_before), 0.);
@@ -885,6 +895,197 @@ TYPED_TEST(LinearSolverTest, SymmetricFactorizationSolvesTheSymmetricPart)
             << ": relative residuals " << residual << ", " << second_residual
             << "; of the symmetric part of a non-symmetric matrix "
             << antisymmetric_residual << std::endl;
+}
+
+
+
+// @sect4{Single-column BLAS calls}
+//
+// Inside a SingleColumnBlas scope, dgemm with one column of B and dtrsm
+// from the left with one column give what the BLAS library's routines give
+// outside it (to round-off: dgemv sums in another order), for every
+// combination of transposes, triangles and diagonals, and are counted as
+// forwarded; a call with two columns is not forwarded. The matrices are
+// 37 x 23 (dgemm's A) and of order 29 (dtrsm's triangle, diagonally
+// dominant), with leading dimensions larger than their rows.
+extern "C" {
+void
+dgemm_(const char *,
+       const char *,
+       const int *,
+       const int *,
+       const int *,
+       const double *,
+       const double *,
+       const int *,
+       const double *,
+       const int *,
+       const double *,
+       double *,
+       const int *);
+void
+dtrsm_(const char *,
+       const char *,
+       const char *,
+       const char *,
+       const int *,
+       const int *,
+       const double *,
+       const double *,
+       const int *,
+       double *,
+       const int *);
+}
+
+namespace
+{
+  std::vector<double>
+  pseudo_random_entries(const unsigned int n, const double seed)
+  {
+    std::vector<double> entries(n);
+    for (unsigned int i = 0; i < n; ++i)
+      entries[i] = std::sin(seed * (i + 1.)) + 0.1;
+    return entries;
+  }
+
+  double
+  max_relative_difference(const std::vector<double> &a,
+                          const std::vector<double> &b)
+  {
+    double difference = 0., size = 0.;
+    for (unsigned int i = 0; i < a.size(); ++i)
+      {
+        difference = std::max(difference, std::abs(a[i] - b[i]));
+        size       = std::max(size, std::abs(b[i]));
+      }
+    return difference / size;
+  }
+} // namespace
+
+TEST(SingleColumnBlas, AgreesWithTheLibraryRoutines)
+{
+  const double alpha = -0.7, beta = 0.4;
+  double       worst = 0.;
+  for (const char transa : {'N', 'T'})
+    for (const char transb : {'N', 'T'})
+      {
+        const int                 m = 37, k = 23, n = 1;
+        const int                 lda = (transa == 'N' ? m : k) + 3;
+        const int                 ldb = (transb == 'N' ? k : n) + 2;
+        const int                 ldc = m + 1;
+        const std::vector<double> a =
+          pseudo_random_entries(lda * (transa == 'N' ? k : m), 0.37);
+        const std::vector<double> b =
+          pseudo_random_entries(ldb * (transb == 'N' ? n : k), 0.91);
+        const std::vector<double> c       = pseudo_random_entries(ldc * n, 1.3);
+        std::vector<double>       library = c, forwarded = c;
+        dgemm_(&transa,
+               &transb,
+               &m,
+               &n,
+               &k,
+               &alpha,
+               a.data(),
+               &lda,
+               b.data(),
+               &ldb,
+               &beta,
+               library.data(),
+               &ldc);
+        const std::uint64_t before = SingleColumnBlas::n_forwarded_calls();
+        {
+          const SingleColumnBlas scope;
+          dgemm_(&transa,
+                 &transb,
+                 &m,
+                 &n,
+                 &k,
+                 &alpha,
+                 a.data(),
+                 &lda,
+                 b.data(),
+                 &ldb,
+                 &beta,
+                 forwarded.data(),
+                 &ldc);
+        }
+        EXPECT_EQ(SingleColumnBlas::n_forwarded_calls(), before + 1);
+        const double difference = max_relative_difference(forwarded, library);
+        EXPECT_LT(difference, 1e-14) << transa << transb;
+        worst = std::max(worst, difference);
+      }
+
+  const int           m = 29, lda = 31;
+  std::vector<double> a = pseudo_random_entries(lda * m, 0.53);
+  for (int i = 0; i < m; ++i)
+    a[i + i * lda] += 4.;
+  const double one = 1.;
+  for (const char uplo : {'U', 'L'})
+    for (const char trans : {'N', 'T'})
+      for (const char diag : {'N', 'U'})
+        {
+          const int                 n = 1, ldb = m + 2;
+          const std::vector<double> b       = pseudo_random_entries(ldb, 0.77);
+          std::vector<double>       library = b, forwarded = b;
+          const char                side = 'L';
+          dtrsm_(&side,
+                 &uplo,
+                 &trans,
+                 &diag,
+                 &m,
+                 &n,
+                 &one,
+                 a.data(),
+                 &lda,
+                 library.data(),
+                 &ldb);
+          const std::uint64_t before = SingleColumnBlas::n_forwarded_calls();
+          {
+            const SingleColumnBlas scope;
+            dtrsm_(&side,
+                   &uplo,
+                   &trans,
+                   &diag,
+                   &m,
+                   &n,
+                   &one,
+                   a.data(),
+                   &lda,
+                   forwarded.data(),
+                   &ldb);
+          }
+          EXPECT_EQ(SingleColumnBlas::n_forwarded_calls(), before + 1);
+          const double difference = max_relative_difference(forwarded, library);
+          EXPECT_LT(difference, 1e-14) << uplo << trans << diag;
+          worst = std::max(worst, difference);
+        }
+
+  // Two columns are the library's.
+  {
+    const int                 m = 5, n = 2, k = 4;
+    const std::vector<double> a = pseudo_random_entries(m * k, 0.2);
+    const std::vector<double> b = pseudo_random_entries(k * n, 0.3);
+    std::vector<double>       c(m * n, 0.);
+    const double              zero   = 0.;
+    const std::uint64_t       before = SingleColumnBlas::n_forwarded_calls();
+    const SingleColumnBlas    scope;
+    dgemm_("N",
+           "N",
+           &m,
+           &n,
+           &k,
+           &one,
+           a.data(),
+           &m,
+           b.data(),
+           &k,
+           &zero,
+           c.data(),
+           &m);
+    EXPECT_EQ(SingleColumnBlas::n_forwarded_calls(), before);
+  }
+  std::cout << "single-column BLAS calls against the library's: worst "
+            << "relative difference " << worst << std::endl;
 }
 
 

@@ -10,6 +10,7 @@
 #include <deal.II/base/exceptions.h>
 #include <dmumps_c.h>
 #include <mpi.h>
+#include <solvers/single_column_blas.h>
 #include <solvers/symmetric_factorization.h>
 #include <string>
 
@@ -211,6 +212,9 @@ namespace SoftRobot
 
 
   // @sect4{SymmetricFactorization::solve}
+  //
+  // MUMPS's back substitution with one right-hand side, its level-3 BLAS
+  // calls handed to the level-2 routines (SingleColumnBlas).
   void
   SymmetricFactorization::solve(const TrilinosWrappers::MPI::Vector &rhs,
                                 TrilinosWrappers::MPI::Vector       &solution)
@@ -223,7 +227,10 @@ namespace SoftRobot
     mumps->data.rhs  = right_hand_side.data();
     mumps->data.nrhs = 1;
     mumps->data.lrhs = right_hand_side.size();
-    mumps->run(3);
+    {
+      const SingleColumnBlas single_column;
+      mumps->run(3);
+    }
     AssertThrow(mumps->error() >= 0,
                 ExcMessage("The symmetric back substitution failed: " +
                            mumps->describe()));
