@@ -898,6 +898,61 @@ TEST(Directions, PendulumInATiltedPlane)
 
 
 
+// The quarter model of a bellows hangs in two symmetry planes: its tip moves
+// in the diagonal plane, $u_y = u_z$ up to round-off, and the depth
+// direction is the difference of the two, a few $10^{-14}$ mm against a
+// vertical motion of some 70 mm. Here $u_z$ is $u_y$ plus
+// $10^{-14}\sin(2\pi\cdot 5.1\,t)$. Measured against its own size the
+// depth signal oscillates; against the record's size (the largest
+// displacement, 70) it is constant and has no peak, while the horizontal
+// direction keeps its swing.
+TEST(Directions, DepthAtRoundOffOfTheRecordHasNoPeak)
+{
+  const double                  sample_rate = 200., duration = 4.;
+  const std::vector<DampedMode> vertical = {{2.35, 0.01, 20., 0.}};
+  const std::vector<DampedMode> lateral  = {{2.35, 0.01, 1e-4, 0.}};
+  TipTrajectory                 trajectory;
+  trajectory.n_components = 3;
+  for (unsigned int i = 0; i < duration * sample_rate; ++i)
+    {
+      const double t   = i / sample_rate;
+      const double u_y = free_decay(lateral, 0., t);
+      trajectory.time.push_back(t);
+      trajectory.displacement.push_back(
+        {{free_decay(vertical, 50., t),
+          u_y,
+          u_y + 1e-14 * std::sin(2. * pi * 5.1 * t)}});
+    }
+
+  const TrajectoryAnalysis analysis = analyse_trajectory(trajectory);
+  ASSERT_EQ(analysis.directions.size(), 3u);
+  const SpectralResult &horizontal = analysis.directions[1].result;
+  const SpectralResult &depth      = analysis.directions[2].result;
+  ASSERT_TRUE(horizontal.has_peak);
+  EXPECT_NEAR(horizontal.dominant_peak.fitted_natural_frequency,
+              2.35,
+              0.005 * 2.35);
+  EXPECT_FALSE(depth.has_peak);
+  EXPECT_NE(depth.no_peak_reason.find("the record's size"), std::string::npos)
+    << depth.no_peak_reason;
+
+  // The same depth signal on its own oscillates.
+  const UniformTrajectory  uniform = resample_uniformly(trajectory);
+  const DirectionalSignals signals = split_into_directions(uniform);
+  const SpectralResult     alone =
+    analyse_signal(signals.samples[2], uniform.sample_rate);
+  EXPECT_TRUE(alone.has_peak) << alone.no_peak_reason;
+  std::cout << "depth at round-off: " << depth.no_peak_reason
+            << "; on its own: "
+            << (alone.has_peak
+                  ? "a peak at " +
+                      std::to_string(alone.dominant_peak.frequency) + " Hz"
+                  : alone.no_peak_reason)
+            << std::endl;
+}
+
+
+
 // @sect3{Non-uniform time steps}
 //
 // A simulator record with a regular step of 0.01 s and two periods of

@@ -124,11 +124,15 @@ namespace SoftRobot
     //
     // Analyse one uniformly sampled signal. Throws std::invalid_argument for
     // fewer than 16 samples, a non-positive sample rate, non-finite samples
-    // or options out of range.
+    // or options out of range. A signal that is one direction of a larger
+    // motion is constant when its range is at the round-off level of that
+    // motion's size, <code>record_size</code> (the largest displacement of
+    // the record; zero for a signal on its own).
     SpectralResult
     analyse_signal(const std::vector<double> &samples,
                    const double               sample_rate,
-                   const SpectralOptions     &options = SpectralOptions());
+                   const SpectralOptions     &options     = SpectralOptions(),
+                   const double               record_size = 0.);
   } // namespace Analysis
 } // namespace SoftRobot
 

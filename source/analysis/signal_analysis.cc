@@ -123,7 +123,11 @@ namespace SoftRobot
 
       // @sect4{Does the signal oscillate?}
       //
-      // A constant (to round-off) has no spectrum to speak of. A monotone or
+      // A constant (to round-off) has no spectrum to speak of: a signal
+      // whose range is below $10^{-12}$ of its size, or of the size of the
+      // motion it is a direction of. The depth direction of a motion that is
+      // planar by symmetry is such a signal: the difference of two
+      // displacements that agree to round-off. A monotone or
       // over-damped decay has at most one turning point; one full cycle
       // needs three. This test comes before the spectral one because the
       // spectrum of a decay $e^{-t/\tau}$ minus its mean does have a broad
@@ -134,17 +138,22 @@ namespace SoftRobot
       bool
       oscillates(const std::vector<double> &samples,
                  const std::vector<double> &signal,
+                 const double               record_size,
                  SpectralResult            &result)
       {
         const auto [smallest, largest] =
           std::minmax_element(samples.begin(), samples.end());
-        const double size = std::max(std::abs(*smallest), std::abs(*largest));
+        const double own_size =
+          std::max(std::abs(*smallest), std::abs(*largest));
+        const double size = std::max(own_size, record_size);
         if (!(*largest - *smallest > 1e-12 * size))
           {
-            result.no_peak_reason = "the signal is constant (its range " +
-                                    format_number(*largest - *smallest) +
-                                    " is at the round-off level of its size " +
-                                    format_number(size) + ")";
+            result.no_peak_reason =
+              "the signal is constant (its range " +
+              format_number(*largest - *smallest) +
+              " is at the round-off level of " +
+              (size > own_size ? "the record's size " : "its size ") +
+              format_number(size) + ")";
             return false;
           }
 
@@ -442,7 +451,8 @@ namespace SoftRobot
     SpectralResult
     analyse_signal(const std::vector<double> &samples,
                    const double               sample_rate,
-                   const SpectralOptions     &options)
+                   const SpectralOptions     &options,
+                   const double               record_size)
     {
       check_arguments(samples, sample_rate, options);
       const std::size_t fft_length =
@@ -451,7 +461,7 @@ namespace SoftRobot
       SpectralResult            result;
       const std::vector<double> signal =
         transform_record(samples, sample_rate, options, fft_length, result);
-      if (!oscillates(samples, signal, result))
+      if (!oscillates(samples, signal, record_size, result))
         return result;
 
       PeakSearchResult search =

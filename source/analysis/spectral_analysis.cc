@@ -8,10 +8,12 @@
 // split the motion into directions, and analyse each direction with the
 // same options.
 
+#include <algorithm>
 #include <analysis/directions.h>
 #include <analysis/spectral_analysis.h>
 #include <analysis/uniform_sampling.h>
 #include <analysis/utilities.h>
+#include <cmath>
 
 namespace SoftRobot
 {
@@ -47,10 +49,19 @@ namespace SoftRobot
           internal::format_number(signals.out_of_plane_ratio, 3) +
           "), so the split into horizontal and depth is arbitrary");
 
+      // The size of the whole motion, against which a direction's range is
+      // measured for round-off (analyse_signal()).
+      double record_size = 0.;
+      for (const auto &u : uniform.displacement)
+        for (unsigned int c = 0; c < uniform.n_components; ++c)
+          record_size = std::max(record_size, std::abs(u[c]));
+
       for (std::size_t d = 0; d < signals.names.size(); ++d)
-        analysis.directions.push_back(
-          {signals.names[d],
-           analyse_signal(signals.samples[d], uniform.sample_rate, options)});
+        analysis.directions.push_back({signals.names[d],
+                                       analyse_signal(signals.samples[d],
+                                                      uniform.sample_rate,
+                                                      options,
+                                                      record_size)});
       return analysis;
     }
   } // namespace Analysis
