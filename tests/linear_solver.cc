@@ -843,7 +843,9 @@ TYPED_TEST(LinearSolverTest, SymmetricFactorizationSolvesTheSymmetricPart)
   // MUMPS's back substitution calls the program's dgemm_ and dtrsm_, which
   // hand its single-column calls to dgemv and dtrsv (SingleColumnBlas).
   if (serial)
-    EXPECT_GT(SingleColumnBlas::n_forwarded_calls(), forwarded_before);
+    {
+      EXPECT_GT(SingleColumnBlas::n_forwarded_calls(), forwarded_before);
+    }
   const double residual = relative_residual(matrix, solution, rhs);
   EXPECT_LT(residual, 1e-12);
   EXPECT_EQ(max_difference(matrix, matrix_before), 0.);
@@ -908,35 +910,6 @@ TYPED_TEST(LinearSolverTest, SymmetricFactorizationSolvesTheSymmetricPart)
 // forwarded; a call with two columns is not forwarded. The matrices are
 // 37 x 23 (dgemm's A) and of order 29 (dtrsm's triangle, diagonally
 // dominant), with leading dimensions larger than their rows.
-extern "C" {
-void
-dgemm_(const char *,
-       const char *,
-       const int *,
-       const int *,
-       const int *,
-       const double *,
-       const double *,
-       const int *,
-       const double *,
-       const int *,
-       const double *,
-       double *,
-       const int *);
-void
-dtrsm_(const char *,
-       const char *,
-       const char *,
-       const char *,
-       const int *,
-       const int *,
-       const double *,
-       const double *,
-       const int *,
-       double *,
-       const int *);
-}
-
 namespace
 {
   std::vector<double>
@@ -948,15 +921,26 @@ namespace
     return entries;
   }
 
+  // A BLAS call applied to copies of the same array outside and inside a
+  // SingleColumnBlas scope: the largest difference of the results relative
+  // to the library's, with a failure if the call inside was not forwarded.
+  template <typename Call>
   double
-  max_relative_difference(const std::vector<double> &a,
-                          const std::vector<double> &b)
+  forwarded_against_library(const std::vector<double> &start, const Call &call)
   {
+    std::vector<double> library = start, forwarded = start;
+    call(library);
+    const std::uint64_t before = SingleColumnBlas::n_forwarded_calls();
+    {
+      const SingleColumnBlas scope;
+      call(forwarded);
+    }
+    EXPECT_EQ(SingleColumnBlas::n_forwarded_calls(), before + 1);
     double difference = 0., size = 0.;
-    for (unsigned int i = 0; i < a.size(); ++i)
+    for (unsigned int i = 0; i < start.size(); ++i)
       {
-        difference = std::max(difference, std::abs(a[i] - b[i]));
-        size       = std::max(size, std::abs(b[i]));
+        difference = std::max(difference, std::abs(forwarded[i] - library[i]));
+        size       = std::max(size, std::abs(library[i]));
       }
     return difference / size;
   }
@@ -977,40 +961,23 @@ TEST(SingleColumnBlas, AgreesWithTheLibraryRoutines)
           pseudo_random_entries(lda * (transa == 'N' ? k : m), 0.37);
         const std::vector<double> b =
           pseudo_random_entries(ldb * (transb == 'N' ? n : k), 0.91);
-        const std::vector<double> c       = pseudo_random_entries(ldc * n, 1.3);
-        std::vector<double>       library = c, forwarded = c;
-        dgemm_(&transa,
-               &transb,
-               &m,
-               &n,
-               &k,
-               &alpha,
-               a.data(),
-               &lda,
-               b.data(),
-               &ldb,
-               &beta,
-               library.data(),
-               &ldc);
-        const std::uint64_t before = SingleColumnBlas::n_forwarded_calls();
-        {
-          const SingleColumnBlas scope;
-          dgemm_(&transa,
-                 &transb,
-                 &m,
-                 &n,
-                 &k,
-                 &alpha,
-                 a.data(),
-                 &lda,
-                 b.data(),
-                 &ldb,
-                 &beta,
-                 forwarded.data(),
-                 &ldc);
-        }
-        EXPECT_EQ(SingleColumnBlas::n_forwarded_calls(), before + 1);
-        const double difference = max_relative_difference(forwarded, library);
+        const double difference =
+          forwarded_against_library(pseudo_random_entries(ldc * n, 1.3),
+                                    [&](std::vector<double> &c) {
+                                      dgemm_(&transa,
+                                             &transb,
+                                             &m,
+                                             &n,
+                                             &k,
+                                             &alpha,
+                                             a.data(),
+                                             &lda,
+                                             b.data(),
+                                             &ldb,
+                                             &beta,
+                                             c.data(),
+                                             &ldc);
+                                    });
         EXPECT_LT(difference, 1e-14) << transa << transb;
         worst = std::max(worst, difference);
       }
@@ -1024,38 +991,22 @@ TEST(SingleColumnBlas, AgreesWithTheLibraryRoutines)
     for (const char trans : {'N', 'T'})
       for (const char diag : {'N', 'U'})
         {
-          const int                 n = 1, ldb = m + 2;
-          const std::vector<double> b       = pseudo_random_entries(ldb, 0.77);
-          std::vector<double>       library = b, forwarded = b;
-          const char                side = 'L';
-          dtrsm_(&side,
-                 &uplo,
-                 &trans,
-                 &diag,
-                 &m,
-                 &n,
-                 &one,
-                 a.data(),
-                 &lda,
-                 library.data(),
-                 &ldb);
-          const std::uint64_t before = SingleColumnBlas::n_forwarded_calls();
-          {
-            const SingleColumnBlas scope;
-            dtrsm_(&side,
-                   &uplo,
-                   &trans,
-                   &diag,
-                   &m,
-                   &n,
-                   &one,
-                   a.data(),
-                   &lda,
-                   forwarded.data(),
-                   &ldb);
-          }
-          EXPECT_EQ(SingleColumnBlas::n_forwarded_calls(), before + 1);
-          const double difference = max_relative_difference(forwarded, library);
+          const int    n = 1, ldb = m + 2;
+          const double difference =
+            forwarded_against_library(pseudo_random_entries(ldb, 0.77),
+                                      [&](std::vector<double> &b) {
+                                        dtrsm_("L",
+                                               &uplo,
+                                               &trans,
+                                               &diag,
+                                               &m,
+                                               &n,
+                                               &one,
+                                               a.data(),
+                                               &lda,
+                                               b.data(),
+                                               &ldb);
+                                      });
           EXPECT_LT(difference, 1e-14) << uplo << trans << diag;
           worst = std::max(worst, difference);
         }

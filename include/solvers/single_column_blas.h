@@ -27,6 +27,45 @@
 
 #include <cstdint>
 
+// The two BLAS routines the program defines (the Fortran interface: every
+// argument by address, the matrices by columns).
+extern "C" {
+// $\mathbf C \leftarrow \alpha\,\mathrm{op}(\mathbf A)\,\mathrm{op}
+// (\mathbf B) + \beta\mathbf C$, $\mathrm{op}(\mathbf A)$ of $m\times
+// k$ and $\mathrm{op}(\mathbf B)$ of $k\times n$.
+void
+dgemm_(const char   *transa,
+       const char   *transb,
+       const int    *m,
+       const int    *n,
+       const int    *k,
+       const double *alpha,
+       const double *a,
+       const int    *lda,
+       const double *b,
+       const int    *ldb,
+       const double *beta,
+       double       *c,
+       const int    *ldc);
+
+// $\mathrm{op}(\mathbf A)\,\mathbf X = \alpha\mathbf B$ (side L) or
+// $\mathbf X\,\mathrm{op}(\mathbf A) = \alpha\mathbf B$ (side R) with
+// a triangular $\mathbf A$, $\mathbf X$ overwriting the $m\times n$
+// matrix $\mathbf B$.
+void
+dtrsm_(const char   *side,
+       const char   *uplo,
+       const char   *transa,
+       const char   *diag,
+       const int    *m,
+       const int    *n,
+       const double *alpha,
+       const double *a,
+       const int    *lda,
+       double       *b,
+       const int    *ldb);
+}
+
 namespace SoftRobot
 {
   class SingleColumnBlas

@@ -83,10 +83,10 @@ namespace SoftRobot
 
 // @sect4{The replaced routines}
 //
-// The Fortran BLAS interface: every argument by address, the matrices by
-// columns. (gfortran's hidden lengths of the character arguments are left
-// out, as in the C declarations of deal.II and of the BLAS libraries
-// themselves; the routines read one character.)
+// Declared in the header; the level-2 routines they hand calls to are
+// declared here. gfortran's hidden lengths of the character arguments are
+// left out, as in the C declarations of deal.II and of the BLAS libraries
+// themselves: the routines read one character.
 extern "C" {
 void
 dgemv_(const char *,
@@ -111,11 +111,9 @@ dtrsv_(const char *,
        double *,
        const int *);
 
-// $\mathbf C \leftarrow \alpha\,\mathrm{op}(\mathbf A)\,\mathrm{op}(\mathbf
-// B) + \beta\mathbf C$ with $\mathrm{op}(\mathbf A)$ of $m\times k$. With
-// one column ($n = 1$) that is $\mathbf c \leftarrow \alpha\,\mathrm
-// {op}(\mathbf A)\,\mathbf b + \beta\mathbf c$, where $\mathbf b$ is B's
-// column, or its row (stride ldb) when B is transposed.
+// With one column ($n = 1$) dgemm is $\mathbf c \leftarrow \alpha\,
+// \mathrm{op}(\mathbf A)\,\mathbf b + \beta\mathbf c$, where $\mathbf b$
+// is B's column, or its row (stride ldb) when B is transposed.
 void
 dgemm_(const char   *transa,
        const char   *transb,
@@ -141,26 +139,12 @@ dgemm_(const char   *transa,
         dgemv_("N", m, k, alpha, a, lda, b, increment, beta, c, &one);
       return;
     }
-  using Dgemm                 = void(const char *,
-                     const char *,
-                     const int *,
-                     const int *,
-                     const int *,
-                     const double *,
-                     const double *,
-                     const int *,
-                     const double *,
-                     const int *,
-                     const double *,
-                     double *,
-                     const int *);
+  using Dgemm                 = decltype(dgemm_);
   static Dgemm *const library = SoftRobot::library_routine<Dgemm>("dgemm_");
   library(transa, transb, m, n, k, alpha, a, lda, b, ldb, beta, c, ldc);
 }
 
-// $\mathrm{op}(\mathbf A)\,\mathbf X = \alpha\mathbf B$ from the left
-// with a triangular $\mathbf A$ of order $m$, $\mathbf X$ overwriting
-// $\mathbf B$. With one column and $\alpha = 1$ that is dtrsv.
+// From the left with one column and $\alpha = 1$, dtrsm is dtrsv.
 void
 dtrsm_(const char   *side,
        const char   *uplo,
@@ -181,17 +165,7 @@ dtrsm_(const char   *side,
       dtrsv_(uplo, transa, diag, m, a, lda, b, &one);
       return;
     }
-  using Dtrsm                 = void(const char *,
-                     const char *,
-                     const char *,
-                     const char *,
-                     const int *,
-                     const int *,
-                     const double *,
-                     const double *,
-                     const int *,
-                     double *,
-                     const int *);
+  using Dtrsm                 = decltype(dtrsm_);
   static Dtrsm *const library = SoftRobot::library_routine<Dtrsm>("dtrsm_");
   library(side, uplo, transa, diag, m, n, alpha, a, lda, b, ldb);
 }
