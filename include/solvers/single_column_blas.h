@@ -15,7 +15,8 @@
 // calls outside such a scope, go to the BLAS the program is linked with.
 //
 // This works through the dynamic linker: the program defines dgemm_ and
-// dtrsm_ itself, the linker resolves MUMPS's calls to the program's
+// dtrsm_ itself (in the source file, like the analysis's LAPACK
+// declarations kept out of the public headers, analysis/lapack.h), the linker resolves MUMPS's calls to the program's
 // definitions first, and these find the BLAS library's own through
 // dlsym(RTLD_NEXT). SymmetricFactorization::solve() opens the scope around
 // MUMPS's back substitution.
@@ -26,45 +27,6 @@
 #define soft_robot_solvers_single_column_blas_h
 
 #include <cstdint>
-
-// The two BLAS routines the program defines (the Fortran interface: every
-// argument by address, the matrices by columns).
-extern "C" {
-// $\mathbf C \leftarrow \alpha\,\mathrm{op}(\mathbf A)\,\mathrm{op}
-// (\mathbf B) + \beta\mathbf C$, $\mathrm{op}(\mathbf A)$ of $m\times
-// k$ and $\mathrm{op}(\mathbf B)$ of $k\times n$.
-void
-dgemm_(const char   *transa,
-       const char   *transb,
-       const int    *m,
-       const int    *n,
-       const int    *k,
-       const double *alpha,
-       const double *a,
-       const int    *lda,
-       const double *b,
-       const int    *ldb,
-       const double *beta,
-       double       *c,
-       const int    *ldc);
-
-// $\mathrm{op}(\mathbf A)\,\mathbf X = \alpha\mathbf B$ (side L) or
-// $\mathbf X\,\mathrm{op}(\mathbf A) = \alpha\mathbf B$ (side R) with
-// a triangular $\mathbf A$, $\mathbf X$ overwriting the $m\times n$
-// matrix $\mathbf B$.
-void
-dtrsm_(const char   *side,
-       const char   *uplo,
-       const char   *transa,
-       const char   *diag,
-       const int    *m,
-       const int    *n,
-       const double *alpha,
-       const double *a,
-       const int    *lda,
-       double       *b,
-       const int    *ldb);
-}
 
 namespace SoftRobot
 {
@@ -77,9 +39,9 @@ namespace SoftRobot
     SingleColumnBlas &
     operator=(const SingleColumnBlas &) = delete;
 
-    // The number of calls handed to the level-2 routines so far, on all
-    // threads (for the tests: the program's definitions must be the ones
-    // MUMPS calls).
+    // The number of calls the calling thread has handed to the level-2
+    // routines so far (for the tests: the program's definitions must be the
+    // ones MUMPS calls).
     static std::uint64_t
     n_forwarded_calls();
 

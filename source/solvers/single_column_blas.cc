@@ -4,7 +4,7 @@
 //
 // See include/solvers/single_column_blas.h.
 
-#include <atomic>
+#include <cstddef>
 #include <cstdio>
 #include <cstdlib>
 #include <dlfcn.h>
@@ -14,8 +14,8 @@ namespace SoftRobot
 {
   namespace
   {
-    thread_local bool          active = false;
-    std::atomic<std::uint64_t> forwarded_calls{0};
+    thread_local bool          active          = false;
+    thread_local std::uint64_t forwarded_calls = 0;
 
     bool
     is_transposed(const char *flag)
@@ -61,7 +61,7 @@ namespace SoftRobot
   std::uint64_t
   SingleColumnBlas::n_forwarded_calls()
   {
-    return forwarded_calls.load();
+    return forwarded_calls;
   }
 
 
@@ -73,7 +73,7 @@ namespace SoftRobot
     {
       if (!active)
         return false;
-      forwarded_calls.fetch_add(1, std::memory_order_relaxed);
+      ++forwarded_calls;
       return true;
     }
   } // namespace
@@ -83,35 +83,44 @@ namespace SoftRobot
 
 // @sect4{The replaced routines}
 //
-// Declared in the header; the level-2 routines they hand calls to are
-// declared here. gfortran's hidden lengths of the character arguments are
-// left out, as in the C declarations of deal.II and of the BLAS libraries
-// themselves: the routines read one character.
+// The Fortran BLAS interface: every argument by address, the matrices by
+// columns, and after all others the lengths of the character arguments,
+// which gfortran passes and a gfortran-compiled BLAS may assume are there
+// (see analysis/lapack.h). MUMPS passes them; the definitions below hand
+// them on to the library's routines, and the level-2 calls pass 1. (C++
+// callers such as deal.II declare the routines without them; the values
+// read then are never used by a routine that reads one character.)
 extern "C" {
 void
-dgemv_(const char *,
-       const int *,
-       const int *,
-       const double *,
-       const double *,
-       const int *,
-       const double *,
-       const int *,
-       const double *,
-       double *,
-       const int *);
+dgemv_(const char   *trans,
+       const int    *m,
+       const int    *n,
+       const double *alpha,
+       const double *a,
+       const int    *lda,
+       const double *x,
+       const int    *incx,
+       const double *beta,
+       double       *y,
+       const int    *incy,
+       std::size_t   trans_length);
 
 void
-dtrsv_(const char *,
-       const char *,
-       const char *,
-       const int *,
-       const double *,
-       const int *,
-       double *,
-       const int *);
+dtrsv_(const char   *uplo,
+       const char   *trans,
+       const char   *diag,
+       const int    *n,
+       const double *a,
+       const int    *lda,
+       double       *x,
+       const int    *incx,
+       std::size_t   uplo_length,
+       std::size_t   trans_length,
+       std::size_t   diag_length);
 
-// With one column ($n = 1$) dgemm is $\mathbf c \leftarrow \alpha\,
+// $\mathbf C \leftarrow \alpha\,\mathrm{op}(\mathbf A)\,\mathrm{op}
+// (\mathbf B) + \beta\mathbf C$, $\mathrm{op}(\mathbf A)$ of $m\times
+// k$. With one column ($n = 1$) that is $\mathbf c \leftarrow \alpha\,
 // \mathrm{op}(\mathbf A)\,\mathbf b + \beta\mathbf c$, where $\mathbf b$
 // is B's column, or its row (stride ldb) when B is transposed.
 void
@@ -127,24 +136,44 @@ dgemm_(const char   *transa,
        const int    *ldb,
        const double *beta,
        double       *c,
-       const int    *ldc)
+       const int    *ldc,
+       std::size_t   transa_length,
+       std::size_t   transb_length)
 {
   if (*n == 1 && *m > 0 && *k > 0 && SoftRobot::forwarding())
     {
       const int  one       = 1;
       const int *increment = SoftRobot::is_transposed(transb) ? ldb : &one;
       if (SoftRobot::is_transposed(transa))
-        dgemv_("T", k, m, alpha, a, lda, b, increment, beta, c, &one);
+        dgemv_("T", k, m, alpha, a, lda, b, increment, beta, c, &one, 1);
       else
-        dgemv_("N", m, k, alpha, a, lda, b, increment, beta, c, &one);
+        dgemv_("N", m, k, alpha, a, lda, b, increment, beta, c, &one, 1);
       return;
     }
   using Dgemm                 = decltype(dgemm_);
   static Dgemm *const library = SoftRobot::library_routine<Dgemm>("dgemm_");
-  library(transa, transb, m, n, k, alpha, a, lda, b, ldb, beta, c, ldc);
+  library(transa,
+          transb,
+          m,
+          n,
+          k,
+          alpha,
+          a,
+          lda,
+          b,
+          ldb,
+          beta,
+          c,
+          ldc,
+          transa_length,
+          transb_length);
 }
 
-// From the left with one column and $\alpha = 1$, dtrsm is dtrsv.
+// $\mathrm{op}(\mathbf A)\,\mathbf X = \alpha\mathbf B$ (side L) or
+// $\mathbf X\,\mathrm{op}(\mathbf A) = \alpha\mathbf B$ (side R) with a
+// triangular $\mathbf A$, $\mathbf X$ overwriting the $m\times n$ matrix
+// $\mathbf B$. From the left with one column and $\alpha = 1$ that is
+// dtrsv.
 void
 dtrsm_(const char   *side,
        const char   *uplo,
@@ -156,17 +185,35 @@ dtrsm_(const char   *side,
        const double *a,
        const int    *lda,
        double       *b,
-       const int    *ldb)
+       const int    *ldb,
+       std::size_t   side_length,
+       std::size_t   uplo_length,
+       std::size_t   transa_length,
+       std::size_t   diag_length)
 {
   if (*n == 1 && *m > 0 && (*side == 'L' || *side == 'l') && *alpha == 1. &&
       SoftRobot::forwarding())
     {
       const int one = 1;
-      dtrsv_(uplo, transa, diag, m, a, lda, b, &one);
+      dtrsv_(uplo, transa, diag, m, a, lda, b, &one, 1, 1, 1);
       return;
     }
   using Dtrsm                 = decltype(dtrsm_);
   static Dtrsm *const library = SoftRobot::library_routine<Dtrsm>("dtrsm_");
-  library(side, uplo, transa, diag, m, n, alpha, a, lda, b, ldb);
+  library(side,
+          uplo,
+          transa,
+          diag,
+          m,
+          n,
+          alpha,
+          a,
+          lda,
+          b,
+          ldb,
+          side_length,
+          uplo_length,
+          transa_length,
+          diag_length);
 }
 }
