@@ -18,7 +18,8 @@
 // - the operator complexity counted from ML's levels is ML's own (to the
 //   few entries by which ML's records of the coarse matrices differ);
 // - the names of the direct solvers are the classes Amesos creates;
-// - MUMPS's back substitution calls the program's dgemm_ and dtrsm_, whose
+// - MUMPS's back substitution calls the program's dgemm_ and dtrsm_ (and
+//   sgemm_ and strsm_ for the single-precision factor), whose
 //   single-column calls give what OpenBLAS's routines give.
 // Besides, the tests check the solver's contract: exact solutions of the
 // direct solvers, the tolerance of the iterative ones, StepFailure when a
@@ -71,6 +72,7 @@
 #include <deal.II/numerics/vector_tools.h>
 #include <gtest/gtest.h>
 #include <iostream>
+#include <limits>
 #include <memory>
 #include <ml_MultiLevelPreconditioner.h>
 #include <solvers/linear_solver.h>
@@ -903,18 +905,106 @@ TYPED_TEST(LinearSolverTest, SymmetricFactorizationSolvesTheSymmetricPart)
 
 
 
+// @sect4{The single-precision factor}
+//
+// With `Factorization precision = single` the symmetric factorization
+// keeps its factor in single precision. A back substitution then solves to
+// single precision only: its relative residual is above double precision's
+// round-off (so the factor is not the double one) and below $10^{-4}$. The
+// iteration the modified Newton method does, $\mathbf x \leftarrow
+// \mathbf x + \tilde{\mathbf A}^{-1}(\mathbf b - \mathbf A\mathbf x)$
+// with the residual in double precision, reduces the residual by at least
+// a factor of 100 per step and reaches the double-precision factor's
+// solution to $10^{-12}$ within three steps. The back substitution calls
+// the program's sgemm_ and strsm_. Inside a DoublePrecisionFactor scope
+// the same solver solves to double precision's round-off, and after it
+// as before. On several processes the solver is
+// Amesos' MUMPS in double precision, and the test is skipped.
+TYPED_TEST(LinearSolverTest, SingleFactorIsRefinedByTheResidual)
+{
+  constexpr int dim = TypeParam::value;
+  if (dealii::Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD) > 1)
+    GTEST_SKIP() << "the single-precision factor is for one process";
+  const ElasticBody<dim>   body(multilevel_cells[dim - 1]);
+  Parameters::LinearSolver parameters =
+    solver_parameters(SolverType::direct, DirectType::mumps);
+  parameters.symmetric_factorization = true;
+  LinearSolver double_solver(parameters, 1, MPI_COMM_WORLD, this->timer);
+  parameters.single_precision_factor = true;
+  LinearSolver single_solver(parameters, 1, MPI_COMM_WORLD, this->timer);
+
+  TrilinosWrappers::SparseMatrix matrix;
+  body.set_matrix(body.mass_factor(), matrix);
+  const TrilinosWrappers::MPI::Vector rhs = body.right_hand_side();
+  TrilinosWrappers::MPI::Vector       exact(body.owned_dofs, MPI_COMM_WORLD);
+  double_solver.prepare(matrix);
+  double_solver.solve(rhs, exact);
+
+  single_solver.prepare(matrix);
+  EXPECT_EQ(single_solver.solver_in_use(), "MUMPS symmetric");
+  TrilinosWrappers::MPI::Vector solution(body.owned_dofs, MPI_COMM_WORLD);
+  const std::uint64_t forwarded_before = SingleColumnBlas::n_forwarded_calls();
+  single_solver.solve(rhs, solution);
+  EXPECT_GT(SingleColumnBlas::n_forwarded_calls(), forwarded_before);
+  const double first_residual = relative_residual(matrix, solution, rhs);
+  EXPECT_GT(first_residual, 1e-12);
+  EXPECT_LT(first_residual, 1e-4);
+
+  std::vector<double>           residuals = {first_residual};
+  TrilinosWrappers::MPI::Vector residual(rhs), correction(solution);
+  for (unsigned int step = 0; step < 3; ++step)
+    {
+      matrix.vmult(residual, solution);
+      residual.sadd(-1., 1., rhs);
+      single_solver.solve(residual, correction);
+      solution += correction;
+      residuals.push_back(relative_residual(matrix, solution, rhs));
+      if (residuals[step] > 1e-13)
+        {
+          EXPECT_LT(residuals[step + 1], 1e-2 * residuals[step]) << step;
+        }
+    }
+  const double difference = relative_difference(solution, exact);
+  EXPECT_LT(difference, 1e-12);
+
+  // Inside a DoublePrecisionFactor scope (the static equilibrium's) the
+  // same solver factorizes in double precision, and after it in single
+  // precision again.
+  double scoped_residual = 0.;
+  {
+    const DoublePrecisionFactor double_precision(single_solver);
+    single_solver.prepare(matrix);
+    single_solver.solve(rhs, solution);
+    scoped_residual = relative_residual(matrix, solution, rhs);
+    EXPECT_LT(scoped_residual, 1e-12);
+  }
+  single_solver.prepare(matrix);
+  single_solver.solve(rhs, solution);
+  EXPECT_GT(relative_residual(matrix, solution, rhs), 1e-12);
+
+  this->log << dim << "D single-precision factor: relative residuals";
+  for (const double r : residuals)
+    this->log << ' ' << r;
+  this->log << "; against the double factor's solution " << difference
+            << "; in a double-precision scope " << scoped_residual << std::endl;
+}
+
+
+
 // @sect4{Single-column BLAS calls}
 //
-// Inside a SingleColumnBlas scope, dgemm with one column of B and dtrsm
+// Inside a SingleColumnBlas scope, gemm with one column of B and trsm
 // from the left with one column give what the BLAS library's routines give
-// outside it (to round-off: dgemv sums in another order), for every
-// combination of transposes, triangles and diagonals, and are counted as
-// forwarded; a call with two columns is not forwarded. The matrices are
-// 37 x 23 (dgemm's A) and of order 29 (dtrsm's triangle, diagonally
-// dominant), with leading dimensions larger than their rows. dgemm is
-// called through deal.II's wrapper (without gfortran's hidden string
-// lengths, as deal.II calls it), dtrsm, which deal.II does not wrap, with
-// them (as analysis/lapack.h declares its routines).
+// outside it (to round-off, 100 times the precision's epsilon: gemv sums in
+// another order), for every combination of transposes, triangles and
+// diagonals, and are counted as forwarded; a call with two columns is not
+// forwarded. Both precisions: double (dgemm, dtrsm) and single (sgemm,
+// strsm, for the single-precision factor). The matrices are 37 x 23
+// (gemm's A) and of order 29 (trsm's triangle, diagonally dominant), with
+// leading dimensions larger than their rows. gemm is called through
+// deal.II's wrapper (without gfortran's hidden string lengths, as deal.II
+// calls it), trsm, which deal.II does not wrap, with them (as
+// analysis/lapack.h declares its routines).
 extern "C" {
 void
 dtrsm_(const char   *side,
@@ -932,14 +1022,89 @@ dtrsm_(const char   *side,
        std::size_t   uplo_length,
        std::size_t   transa_length,
        std::size_t   diag_length);
+
+void
+strsm_(const char  *side,
+       const char  *uplo,
+       const char  *transa,
+       const char  *diag,
+       const int   *m,
+       const int   *n,
+       const float *alpha,
+       const float *a,
+       const int   *lda,
+       float       *b,
+       const int   *ldb,
+       std::size_t  side_length,
+       std::size_t  uplo_length,
+       std::size_t  transa_length,
+       std::size_t  diag_length);
 }
 
 namespace
 {
-  std::vector<double>
+  // trsm from the left with one column, $\alpha = 1$, in either precision.
+  void
+  trsm_one_column(const char           uplo,
+                  const char           trans,
+                  const char           diag,
+                  const int            m,
+                  const double        *a,
+                  const int            lda,
+                  std::vector<double> &b)
+  {
+    const int    n = 1, ldb = b.size();
+    const double one = 1.;
+    dtrsm_("L",
+           &uplo,
+           &trans,
+           &diag,
+           &m,
+           &n,
+           &one,
+           a,
+           &lda,
+           b.data(),
+           &ldb,
+           1,
+           1,
+           1,
+           1);
+  }
+
+  void
+  trsm_one_column(const char          uplo,
+                  const char          trans,
+                  const char          diag,
+                  const int           m,
+                  const float        *a,
+                  const int           lda,
+                  std::vector<float> &b)
+  {
+    const int   n = 1, ldb = b.size();
+    const float one = 1.f;
+    strsm_("L",
+           &uplo,
+           &trans,
+           &diag,
+           &m,
+           &n,
+           &one,
+           a,
+           &lda,
+           b.data(),
+           &ldb,
+           1,
+           1,
+           1,
+           1);
+  }
+
+  template <typename Number>
+  std::vector<Number>
   pseudo_random_entries(const unsigned int n, const double seed)
   {
-    std::vector<double> entries(n);
+    std::vector<Number> entries(n);
     for (unsigned int i = 0; i < n; ++i)
       entries[i] = std::sin(seed * (i + 1.)) + 0.1;
     return entries;
@@ -948,11 +1113,11 @@ namespace
   // A BLAS call applied to copies of the same array outside and inside a
   // SingleColumnBlas scope: the largest difference of the results relative
   // to the library's, with a failure if the call inside was not forwarded.
-  template <typename Call>
+  template <typename Number, typename Call>
   double
-  forwarded_against_library(const std::vector<double> &start, const Call &call)
+  forwarded_against_library(const std::vector<Number> &start, const Call &call)
   {
-    std::vector<double> library = start, forwarded = start;
+    std::vector<Number> library = start, forwarded = start;
     call(library);
     const std::uint64_t before = SingleColumnBlas::n_forwarded_calls();
     {
@@ -963,16 +1128,28 @@ namespace
     double difference = 0., size = 0.;
     for (unsigned int i = 0; i < start.size(); ++i)
       {
-        difference = std::max(difference, std::abs(forwarded[i] - library[i]));
-        size       = std::max(size, std::abs(library[i]));
+        difference =
+          std::max<double>(difference, std::abs(forwarded[i] - library[i]));
+        size = std::max<double>(size, std::abs(library[i]));
       }
     return difference / size;
   }
+
+  template <typename Number>
+  class SingleColumnBlasTest : public ::testing::Test
+  {
+  };
+
+  using Precisions = ::testing::Types<double, float>;
 } // namespace
 
-TEST(SingleColumnBlas, AgreesWithTheLibraryRoutines)
+TYPED_TEST_SUITE(SingleColumnBlasTest, Precisions);
+
+TYPED_TEST(SingleColumnBlasTest, AgreesWithTheLibraryRoutines)
 {
-  const double alpha = -0.7, beta = 0.4;
+  using Number           = TypeParam;
+  const double tolerance = 100. * std::numeric_limits<Number>::epsilon();
+  const Number alpha = -0.7, beta = 0.4;
   double       worst = 0.;
   for (const char transa : {'N', 'T'})
     for (const char transb : {'N', 'T'})
@@ -981,13 +1158,13 @@ TEST(SingleColumnBlas, AgreesWithTheLibraryRoutines)
         const int                 lda = (transa == 'N' ? m : k) + 3;
         const int                 ldb = (transb == 'N' ? k : n) + 2;
         const int                 ldc = m + 1;
-        const std::vector<double> a =
-          pseudo_random_entries(lda * (transa == 'N' ? k : m), 0.37);
-        const std::vector<double> b =
-          pseudo_random_entries(ldb * (transb == 'N' ? n : k), 0.91);
+        const std::vector<Number> a =
+          pseudo_random_entries<Number>(lda * (transa == 'N' ? k : m), 0.37);
+        const std::vector<Number> b =
+          pseudo_random_entries<Number>(ldb * (transb == 'N' ? n : k), 0.91);
         const double difference =
-          forwarded_against_library(pseudo_random_entries(ldc * n, 1.3),
-                                    [&](std::vector<double> &c) {
+          forwarded_against_library(pseudo_random_entries<Number>(ldc * n, 1.3),
+                                    [&](std::vector<Number> &c) {
                                       dealii::gemm(&transa,
                                                    &transb,
                                                    &m,
@@ -1002,50 +1179,34 @@ TEST(SingleColumnBlas, AgreesWithTheLibraryRoutines)
                                                    c.data(),
                                                    &ldc);
                                     });
-        EXPECT_LT(difference, 1e-14) << transa << transb;
+        EXPECT_LT(difference, tolerance) << transa << transb;
         worst = std::max(worst, difference);
       }
 
   const int           m = 29, lda = 31;
-  std::vector<double> a = pseudo_random_entries(lda * m, 0.53);
+  std::vector<Number> a = pseudo_random_entries<Number>(lda * m, 0.53);
   for (int i = 0; i < m; ++i)
     a[i + i * lda] += 4.;
-  const double one = 1.;
   for (const char uplo : {'U', 'L'})
     for (const char trans : {'N', 'T'})
       for (const char diag : {'N', 'U'})
         {
-          const int    n = 1, ldb = m + 2;
-          const double difference =
-            forwarded_against_library(pseudo_random_entries(ldb, 0.77),
-                                      [&](std::vector<double> &b) {
-                                        dtrsm_("L",
-                                               &uplo,
-                                               &trans,
-                                               &diag,
-                                               &m,
-                                               &n,
-                                               &one,
-                                               a.data(),
-                                               &lda,
-                                               b.data(),
-                                               &ldb,
-                                               1,
-                                               1,
-                                               1,
-                                               1);
-                                      });
-          EXPECT_LT(difference, 1e-14) << uplo << trans << diag;
+          const double difference = forwarded_against_library(
+            pseudo_random_entries<Number>(m + 2, 0.77),
+            [&](std::vector<Number> &b) {
+              trsm_one_column(uplo, trans, diag, m, a.data(), lda, b);
+            });
+          EXPECT_LT(difference, tolerance) << uplo << trans << diag;
           worst = std::max(worst, difference);
         }
 
   // Two columns are the library's.
   {
     const int                 m = 5, n = 2, k = 4;
-    const std::vector<double> a = pseudo_random_entries(m * k, 0.2);
-    const std::vector<double> b = pseudo_random_entries(k * n, 0.3);
-    std::vector<double>       c(m * n, 0.);
-    const double              zero   = 0.;
+    const std::vector<Number> a = pseudo_random_entries<Number>(m * k, 0.2);
+    const std::vector<Number> b = pseudo_random_entries<Number>(k * n, 0.3);
+    std::vector<Number>       c(m * n, 0.);
+    const Number              zero = 0., one = 1.;
     const std::uint64_t       before = SingleColumnBlas::n_forwarded_calls();
     const SingleColumnBlas    scope;
     dealii::gemm("N",
@@ -1063,8 +1224,9 @@ TEST(SingleColumnBlas, AgreesWithTheLibraryRoutines)
                  &m);
     EXPECT_EQ(SingleColumnBlas::n_forwarded_calls(), before);
   }
-  std::cout << "single-column BLAS calls against the library's: worst "
-            << "relative difference " << worst << std::endl;
+  std::cout << "single-column BLAS calls against the library's ("
+            << (sizeof(Number) == sizeof(double) ? "double" : "single")
+            << " precision): worst relative difference " << worst << std::endl;
 }
 
 

@@ -344,6 +344,7 @@ namespace SoftRobot
       LinearSolverType linear_solver;
       DirectSolverType direct_solver;
       bool             symmetric_factorization = false;
+      bool             single_precision_factor = false;
       double           linear_relative_tolerance;
       unsigned int     linear_max_iterations;
       unsigned int     smoother_sweeps;

@@ -110,6 +110,21 @@ namespace SoftRobot
     void
     set_near_null_space(const std::vector<std::vector<double>> &modes);
 
+    // Whether the symmetric factorization may keep its factor in single
+    // precision, as `Factorization precision = single` asks (it may by
+    // default). A single-precision back substitution solves to about
+    // single precision's round-off times the matrix's condition number.
+    // The time steps' effective tangent has the mass term $c\,\mathbf M$,
+    // $c = 1/(\beta\Delta t^2)$, on its diagonal; the static tangent lacks
+    // it, and the static solve of the actuator without gravity (no pendulum
+    // stiffness) stalled with a single-precision factor
+    // (doc/performance_discussion.md, item 47). The static equilibrium
+    // therefore asks for double precision (DoublePrecisionFactor). A change
+    // takes effect with the next prepare(), which then analyses the
+    // pattern again.
+    void
+    allow_single_precision_factor(const bool allow);
+
     // Factorize this matrix, or build (or recompute) the multigrid hierarchy
     // for it. The matrix object must stay alive and unchanged until the
     // next call of prepare(): solve() multiplies with it, and KLU may read
@@ -220,6 +235,7 @@ namespace SoftRobot
     std::string                           direct_solver_name;
     // Or MUMPS's symmetric factorization, called directly.
     std::unique_ptr<SymmetricFactorization> symmetric_factorization;
+    bool                                    single_precision_allowed = true;
 
     // The multigrid hierarchy and the near null space it was given, one
     // mode after the other in the layout of an Epetra_MultiVector. ML keeps
@@ -230,6 +246,32 @@ namespace SoftRobot
     double                                             operator_complexity = 0.;
 
     unsigned int preparations = 0;
+  };
+
+
+
+  // While an object of this class lives, the solver's symmetric factor is
+  // in double precision (see LinearSolver::allow_single_precision_factor()).
+  class DoublePrecisionFactor
+  {
+  public:
+    explicit DoublePrecisionFactor(LinearSolver &solver)
+      : solver(solver)
+    {
+      solver.allow_single_precision_factor(false);
+    }
+
+    ~DoublePrecisionFactor()
+    {
+      solver.allow_single_precision_factor(true);
+    }
+
+    DoublePrecisionFactor(const DoublePrecisionFactor &) = delete;
+    DoublePrecisionFactor &
+    operator=(const DoublePrecisionFactor &) = delete;
+
+  private:
+    LinearSolver &solver;
   };
 
 

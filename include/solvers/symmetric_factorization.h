@@ -21,6 +21,18 @@
 // its mirror, so that a matrix that is symmetric only to round-off is
 // factorized as the symmetric matrix nearest to it.
 //
+// The factor can be kept in single precision (`Factorization precision =
+// single`; MUMPS's single-precision library, the matrix and right-hand
+// side converted on the way in, the solution on the way out). A back
+// substitution then solves to about $10^{-7}$ times the matrix's
+// condition number, not to round-off. That is enough where the solution
+// is a correction of Newton's method: the next iteration's residual,
+// computed in double precision, carries the error of this one and the
+// iterations absorb it as they absorb the error of a matrix kept from
+// earlier iterates. It halves the factor's memory and the data every
+// factorization and back substitution moves (doc/performance_discussion.md,
+// item 47).
+//
 // For a matrix on one process only (MUMPS's centralized input and
 // right-hand side); LinearSolver uses Amesos for the others. As in
 // LinearSolver, the symmetric analysis is done once per matrix object and
@@ -44,7 +56,16 @@ namespace SoftRobot
   class SymmetricFactorization
   {
   public:
-    SymmetricFactorization();
+    // The arithmetic of the factor: double precision, or single precision
+    // (see the class's description).
+    enum class Precision
+    {
+      double_precision,
+      single_precision
+    };
+
+    explicit SymmetricFactorization(
+      const Precision precision = Precision::double_precision);
     ~SymmetricFactorization();
     SymmetricFactorization(const SymmetricFactorization &) = delete;
     SymmetricFactorization &
@@ -66,10 +87,12 @@ namespace SoftRobot
     solve(const TrilinosWrappers::MPI::Vector &rhs,
           TrilinosWrappers::MPI::Vector       &solution);
 
-  private:
-    // MUMPS's data structure, declared in source/solvers/
-    // symmetric_factorization.cc so that its header stays there.
+    // MUMPS's data structure in one of its arithmetics, declared in
+    // source/solvers/symmetric_factorization.cc so that its headers stay
+    // there.
     struct Mumps;
+
+  private:
     std::unique_ptr<Mumps> mumps;
 
     // The lower triangle in MUMPS's coordinates (from one): for entry e

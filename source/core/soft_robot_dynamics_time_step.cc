@@ -335,6 +335,9 @@ namespace SoftRobot
   SoftRobotDynamics<dim>::solve_static_equilibrium(const double time)
   {
     rotate_kept_tangent = false;
+    // The static tangent lacks the mass term: its factor in double
+    // precision (LinearSolver::allow_single_precision_factor()).
+    const DoublePrecisionFactor   double_precision(linear_solver);
     TrilinosWrappers::MPI::Vector traction_force(locally_owned_dofs,
                                                  mpi_communicator);
     assemble_external_force(time, 1., traction_force);

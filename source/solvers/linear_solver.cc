@@ -91,6 +91,26 @@ namespace SoftRobot
 
 
 
+  // @sect4{LinearSolver::allow_single_precision_factor}
+  //
+  // A new symmetric factorization in the other precision at the next
+  // prepare(); until then solve() has no factor to use.
+  void
+  LinearSolver::allow_single_precision_factor(const bool allow)
+  {
+    if (allow == single_precision_allowed)
+      return;
+    single_precision_allowed = allow;
+    if (parameters.single_precision_factor && symmetric_factorization)
+      {
+        symmetric_factorization.reset();
+        analysed_matrix = nullptr;
+        is_prepared     = false;
+      }
+  }
+
+
+
   // @sect4{LinearSolver::prepare}
   //
   // Every call counts as a preparation, also one that fails: the statistics
@@ -259,7 +279,10 @@ namespace SoftRobot
     if (uses_symmetric_factorization(matrix.m()))
       {
         direct_problem.reset();
-        symmetric_factorization = std::make_unique<SymmetricFactorization>();
+        symmetric_factorization = std::make_unique<SymmetricFactorization>(
+          (parameters.single_precision_factor && single_precision_allowed)
+            ? SymmetricFactorization::Precision::single_precision
+            : SymmetricFactorization::Precision::double_precision);
         symmetric_factorization->analyse(matrix);
         direct_solver_name = "MUMPS symmetric";
         remember_analysed_matrix(matrix);

@@ -10,6 +10,7 @@
 #include <deal.II/base/exceptions.h>
 #include <dmumps_c.h>
 #include <mpi.h>
+#include <smumps_c.h>
 #include <solvers/single_column_blas.h>
 #include <solvers/symmetric_factorization.h>
 #include <string>
@@ -17,31 +18,136 @@
 namespace SoftRobot
 {
   // MUMPS's control and information arrays are indexed from one in its
-  // documentation (ICNTL(8), INFOG(1)) and from zero here.
+  // documentation (ICNTL(8), INFOG(1)) and from zero here. MUMPS has one
+  // library per arithmetic, with the same structure in each: dmumps_c on
+  // DMUMPS_STRUC_C for double precision, smumps_c on SMUMPS_STRUC_C for
+  // single precision. Mumps is the part of the class that does not depend
+  // on it; Instance<> the one that does.
   struct SymmetricFactorization::Mumps
   {
-    DMUMPS_STRUC_C data = {};
+    virtual ~Mumps() = default;
 
-    void
-    run(const int job)
-    {
-      data.job = job;
-      dmumps_c(&data);
-    }
+    // The control and information arrays of either structure.
+    virtual int *
+    icntl() = 0;
+    virtual const int *
+    infog() const = 0;
+
+    // Job -1 (initialisation), 1 (analysis), 2 (factorization),
+    // 3 (back substitution), -2 (end), on the pattern, values and
+    // right-hand side handed over below.
+    virtual void
+    run(const int job) = 0;
+
+    // The pattern in MUMPS's coordinates; the arrays must outlive the
+    // instance's use of them.
+    virtual void
+    set_pattern(const int n, const int nnz, int *rows, int *columns) = 0;
+
+    // The values of the lower triangle, converted to the instance's
+    // arithmetic where it is not double precision.
+    virtual void
+    set_values(const std::vector<double> &values) = 0;
+
+    // The back substitution for the right-hand side in rhs, overwritten
+    // with the solution.
+    virtual void
+    solve(std::vector<double> &rhs) = 0;
 
     int
     error() const
     {
-      return data.infog[0];
+      return infog()[0];
     }
 
     std::string
     describe() const
     {
-      return "MUMPS returned INFOG(1) = " + std::to_string(data.infog[0]) +
-             ", INFOG(2) = " + std::to_string(data.infog[1]);
+      return "MUMPS returned INFOG(1) = " + std::to_string(infog()[0]) +
+             ", INFOG(2) = " + std::to_string(infog()[1]);
     }
   };
+
+
+
+  namespace
+  {
+    template <typename Structure, typename Number, void (*call)(Structure *)>
+    struct Instance : public SymmetricFactorization::Mumps
+    {
+      Structure           data = {};
+      std::vector<Number> values, rhs;
+
+      // A MUMPS instance on this process alone, symmetric (SYM = 2), the
+      // host working too (PAR = 1).
+      Instance()
+      {
+        data.comm_fortran = static_cast<MUMPS_INT>(MPI_Comm_c2f(MPI_COMM_SELF));
+        data.par          = 1;
+        data.sym          = 2;
+        run(-1);
+      }
+
+      ~Instance() override
+      {
+        run(-2);
+      }
+
+      int *
+      icntl() override
+      {
+        return data.icntl;
+      }
+
+      const int *
+      infog() const override
+      {
+        return data.infog;
+      }
+
+      void
+      run(const int job) override
+      {
+        data.job = job;
+        call(&data);
+      }
+
+      void
+      set_pattern(const int n, const int nnz, int *rows, int *columns) override
+      {
+        data.n   = n;
+        data.nnz = nnz;
+        data.irn = rows;
+        data.jcn = columns;
+        values.resize(nnz);
+        rhs.resize(n);
+        data.a    = values.data();
+        data.rhs  = rhs.data();
+        data.nrhs = 1;
+        data.lrhs = n;
+      }
+
+      void
+      set_values(const std::vector<double> &new_values) override
+      {
+        std::copy(new_values.begin(), new_values.end(), values.begin());
+      }
+
+      void
+      solve(std::vector<double> &right_hand_side) override
+      {
+        std::copy(right_hand_side.begin(), right_hand_side.end(), rhs.begin());
+        {
+          const SingleColumnBlas single_column;
+          run(3);
+        }
+        std::copy(rhs.begin(), rhs.end(), right_hand_side.begin());
+      }
+    };
+
+    using DoubleInstance = Instance<DMUMPS_STRUC_C, double, dmumps_c>;
+    using SingleInstance = Instance<SMUMPS_STRUC_C, float, smumps_c>;
+  } // namespace
 
 
 
@@ -49,30 +155,26 @@ namespace SoftRobot
   //
   // A MUMPS instance on this process alone, symmetric (SYM = 2), the host
   // working too (PAR = 1), without output, without scaling.
-  SymmetricFactorization::SymmetricFactorization()
-    : mumps(std::make_unique<Mumps>())
+  SymmetricFactorization::SymmetricFactorization(const Precision precision)
   {
-    mumps->data.comm_fortran =
-      static_cast<MUMPS_INT>(MPI_Comm_c2f(MPI_COMM_SELF));
-    mumps->data.par = 1;
-    mumps->data.sym = 2;
-    mumps->run(-1);
+    if (precision == Precision::single_precision)
+      mumps = std::make_unique<SingleInstance>();
+    else
+      mumps = std::make_unique<DoubleInstance>();
     AssertThrow(mumps->error() == 0,
                 ExcMessage("MUMPS could not be initialised: " +
                            mumps->describe()));
-    mumps->data.icntl[0] = -1;
-    mumps->data.icntl[1] = -1;
-    mumps->data.icntl[2] = -1;
-    mumps->data.icntl[3] = 0;
-    mumps->data.icntl[7] = 0;
+    int *const icntl = mumps->icntl();
+    icntl[0]         = -1;
+    icntl[1]         = -1;
+    icntl[2]         = -1;
+    icntl[3]         = 0;
+    icntl[7]         = 0;
   }
 
 
 
-  SymmetricFactorization::~SymmetricFactorization()
-  {
-    mumps->run(-2);
-  }
+  SymmetricFactorization::~SymmetricFactorization() = default;
 
 
 
@@ -151,11 +253,7 @@ namespace SoftRobot
     values.resize(rows.size());
     right_hand_side.resize(n);
 
-    mumps->data.n   = n;
-    mumps->data.nnz = rows.size();
-    mumps->data.irn = rows.data();
-    mumps->data.jcn = columns.data();
-    mumps->data.a   = values.data();
+    mumps->set_pattern(n, rows.size(), rows.data(), columns.data());
     mumps->run(1);
     AssertThrow(mumps->error() >= 0,
                 ExcMessage("The symmetric analysis failed: " +
@@ -186,8 +284,8 @@ namespace SoftRobot
                 ExcInternalError());
     for (std::size_t e = 0; e < values.size(); ++e)
       values[e] = 0.5 * (entries[positions[e]] + entries[mirror_positions[e]]);
-    mumps->data.a = values.data();
-    factorized    = false;
+    mumps->set_values(values);
+    factorized = false;
     for (unsigned int attempt = 0; attempt < 4; ++attempt)
       {
         mumps->run(2);
@@ -201,7 +299,7 @@ namespace SoftRobot
           return false;
         if (error != -8 && error != -9 && error != -14)
           break;
-        mumps->data.icntl[13] = 2 * std::max(mumps->data.icntl[13], 20);
+        mumps->icntl()[13] = 2 * std::max(mumps->icntl()[13], 20);
       }
     AssertThrow(false,
                 ExcMessage("The symmetric factorization failed: " +
@@ -224,13 +322,7 @@ namespace SoftRobot
     const double *b = rhs.trilinos_vector()[0];
     for (std::size_t i = 0; i < row_indices.size(); ++i)
       right_hand_side[row_indices[i]] = b[i];
-    mumps->data.rhs  = right_hand_side.data();
-    mumps->data.nrhs = 1;
-    mumps->data.lrhs = right_hand_side.size();
-    {
-      const SingleColumnBlas single_column;
-      mumps->run(3);
-    }
+    mumps->solve(right_hand_side);
     AssertThrow(mumps->error() >= 0,
                 ExcMessage("The symmetric back substitution failed: " +
                            mumps->describe()));
