@@ -78,6 +78,7 @@
 #include <solvers/linear_solver.h>
 #include <solvers/single_column_blas.h>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 using namespace dealii;
@@ -1044,60 +1045,39 @@ strsm_(const char  *side,
 namespace
 {
   // trsm from the left with one column, $\alpha = 1$, in either precision.
+  template <typename Number>
   void
   trsm_one_column(const char           uplo,
                   const char           trans,
                   const char           diag,
                   const int            m,
-                  const double        *a,
+                  const Number        *a,
                   const int            lda,
-                  std::vector<double> &b)
+                  std::vector<Number> &b)
   {
     const int    n = 1, ldb = b.size();
-    const double one = 1.;
-    dtrsm_("L",
-           &uplo,
-           &trans,
-           &diag,
-           &m,
-           &n,
-           &one,
-           a,
-           &lda,
-           b.data(),
-           &ldb,
-           1,
-           1,
-           1,
-           1);
-  }
-
-  void
-  trsm_one_column(const char          uplo,
-                  const char          trans,
-                  const char          diag,
-                  const int           m,
-                  const float        *a,
-                  const int           lda,
-                  std::vector<float> &b)
-  {
-    const int   n = 1, ldb = b.size();
-    const float one = 1.f;
-    strsm_("L",
-           &uplo,
-           &trans,
-           &diag,
-           &m,
-           &n,
-           &one,
-           a,
-           &lda,
-           b.data(),
-           &ldb,
-           1,
-           1,
-           1,
-           1);
+    const Number one  = 1.;
+    const auto   trsm = []() {
+      if constexpr (std::is_same_v<Number, double>)
+        return &dtrsm_;
+      else
+        return &strsm_;
+    }();
+    trsm("L",
+         &uplo,
+         &trans,
+         &diag,
+         &m,
+         &n,
+         &one,
+         a,
+         &lda,
+         b.data(),
+         &ldb,
+         1,
+         1,
+         1,
+         1);
   }
 
   template <typename Number>
