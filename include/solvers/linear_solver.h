@@ -114,11 +114,12 @@ namespace SoftRobot
     // precision, as `Factorization precision = single` asks (it may by
     // default). A single-precision back substitution solves to about
     // single precision's round-off times the matrix's condition number.
-    // The time steps' effective tangent has the mass term $c\,\mathbf M$,
-    // $c = 1/(\beta\Delta t^2)$, on its diagonal; the static tangent lacks
-    // it, and the static solve of the actuator without gravity (no pendulum
-    // stiffness) stalled with a single-precision factor
-    // (doc/performance_discussion.md, item 47). The static equilibrium
+    // The static solve of the actuator without gravity stalled with a
+    // single-precision factor while the time steps converged
+    // (doc/performance_discussion.md, item 47); presumably because the
+    // static tangent lacks the time steps' mass term $c\,\mathbf M$, $c =
+    // 1/(\beta\Delta t^2)$, and with it a bounded condition number (not
+    // measured). The static equilibrium
     // therefore asks for double precision (DoublePrecisionFactor). A change
     // takes effect with the next prepare(), which then analyses the
     // pattern again.

@@ -24,14 +24,14 @@
 // The factor can be kept in single precision (`Factorization precision =
 // single`; MUMPS's single-precision library, the matrix and right-hand
 // side converted on the way in, the solution on the way out). A back
-// substitution then solves to about $10^{-7}$ times the matrix's
-// condition number, not to round-off. That is enough where the solution
+// substitution then solves only to single precision: the usual bound on
+// its relative error is single precision's unit round-off ($6\cdot
+// 10^{-8}$) times the matrix's condition number. That is enough where the solution
 // is a correction of Newton's method: the next iteration's residual,
 // computed in double precision, carries the error of this one and the
 // iterations absorb it as they absorb the error of a matrix kept from
-// earlier iterates. It halves the factor's memory and the data every
-// factorization and back substitution moves (doc/performance_discussion.md,
-// item 47).
+// earlier iterates. The factor's entries take half the bytes; what that
+// saves in time is measured in doc/performance_discussion.md, item 47.
 //
 // For a matrix on one process only (MUMPS's centralized input and
 // right-hand side); LinearSolver uses Amesos for the others. As in
@@ -98,15 +98,12 @@ namespace SoftRobot
     // The lower triangle in MUMPS's coordinates (from one): for entry e
     // its row and column, its position in the matrix's value array and
     // that of its mirror (the same for a diagonal entry).
-    std::vector<int>    rows, columns;
-    std::vector<int>    positions, mirror_positions;
-    std::vector<double> values;
-    // The global index of each locally stored row; the right-hand side in
-    // global order.
-    std::vector<int>    row_indices;
-    std::vector<double> right_hand_side;
-    bool                analysed   = false;
-    bool                factorized = false;
+    std::vector<int> rows, columns;
+    std::vector<int> positions, mirror_positions;
+    // The global index of each locally stored row.
+    std::vector<int> row_indices;
+    bool             analysed   = false;
+    bool             factorized = false;
   };
 } // namespace SoftRobot
 

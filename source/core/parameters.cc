@@ -1062,10 +1062,9 @@ namespace SoftRobot
         Patterns::Selection("double|single"),
         "The arithmetic of the symmetric factorization's factor (with "
         "'Symmetric factorization'; ignored otherwise). 'single' keeps "
-        "the factor in single precision: less memory, and on the bellows "
-        "meshes a seventh to a quarter less time per factorization and a "
-        "fifth to two fifths less per back substitution, the more the "
-        "larger the mesh. A back substitution then solves to single "
+        "the factor in single precision: half the factor's bytes, and "
+        "faster factorizations and back substitutions (measured in "
+        "doc/performance_discussion.md, item 47). A back substitution then solves to single "
         "precision only; the Newton iterations on the double-precision "
         "residual correct that as they correct an old matrix, so the "
         "answer is the same to the Newton tolerance. The time steps only: "

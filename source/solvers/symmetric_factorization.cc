@@ -44,15 +44,18 @@ namespace SoftRobot
     virtual void
     set_pattern(const int n, const int nnz, int *rows, int *columns) = 0;
 
-    // The values of the lower triangle, converted to the instance's
-    // arithmetic where it is not double precision.
+    // The values of the lower triangle, in the instance's arithmetic:
+    // entry e is the mean of the matrix's entries at positions[e] and
+    // mirror_positions[e].
     virtual void
-    set_values(const std::vector<double> &values) = 0;
+    set_values(const double           *entries,
+               const std::vector<int> &positions,
+               const std::vector<int> &mirror_positions) = 0;
 
-    // The back substitution for the right-hand side in rhs, overwritten
-    // with the solution.
+    // The back substitution: b and x hold the locally stored rows, whose
+    // global indices (MUMPS's order) are row_indices.
     virtual void
-    solve(std::vector<double> &rhs) = 0;
+    solve(const double *b, const std::vector<int> &row_indices, double *x) = 0;
 
     int
     error() const
@@ -128,20 +131,28 @@ namespace SoftRobot
       }
 
       void
-      set_values(const std::vector<double> &new_values) override
+      set_values(const double           *entries,
+                 const std::vector<int> &positions,
+                 const std::vector<int> &mirror_positions) override
       {
-        std::copy(new_values.begin(), new_values.end(), values.begin());
+        for (std::size_t e = 0; e < values.size(); ++e)
+          values[e] =
+            0.5 * (entries[positions[e]] + entries[mirror_positions[e]]);
       }
 
       void
-      solve(std::vector<double> &right_hand_side) override
+      solve(const double           *b,
+            const std::vector<int> &row_indices,
+            double                 *x) override
       {
-        std::copy(right_hand_side.begin(), right_hand_side.end(), rhs.begin());
+        for (std::size_t i = 0; i < row_indices.size(); ++i)
+          rhs[row_indices[i]] = b[i];
         {
           const SingleColumnBlas single_column;
           run(3);
         }
-        std::copy(rhs.begin(), rhs.end(), right_hand_side.begin());
+        for (std::size_t i = 0; i < row_indices.size(); ++i)
+          x[i] = rhs[row_indices[i]];
       }
     };
 
@@ -250,8 +261,6 @@ namespace SoftRobot
           mirror_positions.push_back(
             column == row ? k : position_in_row(local_row[column], row));
         }
-    values.resize(rows.size());
-    right_hand_side.resize(n);
 
     mumps->set_pattern(n, rows.size(), rows.data(), columns.data());
     mumps->run(1);
@@ -282,9 +291,7 @@ namespace SoftRobot
                   offsets[matrix.trilinos_matrix().NumMyRows()]) >=
                   positions.size(),
                 ExcInternalError());
-    for (std::size_t e = 0; e < values.size(); ++e)
-      values[e] = 0.5 * (entries[positions[e]] + entries[mirror_positions[e]]);
-    mumps->set_values(values);
+    mumps->set_values(entries, positions, mirror_positions);
     factorized = false;
     for (unsigned int attempt = 0; attempt < 4; ++attempt)
       {
@@ -319,15 +326,11 @@ namespace SoftRobot
   {
     AssertThrow(factorized,
                 ExcMessage("solve() needs a successful factorize()."));
-    const double *b = rhs.trilinos_vector()[0];
-    for (std::size_t i = 0; i < row_indices.size(); ++i)
-      right_hand_side[row_indices[i]] = b[i];
-    mumps->solve(right_hand_side);
+    mumps->solve(rhs.trilinos_vector()[0],
+                 row_indices,
+                 solution.trilinos_vector()[0]);
     AssertThrow(mumps->error() >= 0,
                 ExcMessage("The symmetric back substitution failed: " +
                            mumps->describe()));
-    double *x = solution.trilinos_vector()[0];
-    for (std::size_t i = 0; i < row_indices.size(); ++i)
-      x[i] = right_hand_side[row_indices[i]];
   }
 } // namespace SoftRobot
