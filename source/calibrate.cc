@@ -51,6 +51,7 @@
 #include <functional>
 #include <iomanip>
 #include <iostream>
+#include <solvers/blas_kernels.h>
 #include <sstream>
 #include <string>
 #include <unistd.h>
@@ -723,6 +724,8 @@ namespace
 int
 main(int argc, char *argv[])
 {
+  // OpenBLAS's kernels for this processor (solvers/blas_kernels.h).
+  SoftRobot::BlasKernels::select();
   // Open MPI's settings for a run without mpirun (core/mpi_session.h).
   const SoftRobot::SerialMpiSession mpi_session;
   // Threads for the assembly: the cores divided among the MPI processes.

@@ -34,6 +34,7 @@
 #include <exception>
 #include <iostream>
 #include <new>
+#include <solvers/blas_kernels.h>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -166,6 +167,9 @@ int
 main(int argc, char *argv[])
 {
   using namespace SoftRobot;
+  // OpenBLAS's kernels for this processor, before anything calls them
+  // (solvers/blas_kernels.h).
+  const BlasKernels::Selection blas = BlasKernels::select();
   // Open MPI's settings for a run without mpirun (core/mpi_session.h);
   // created before MPI_Init, destroyed after MPI_Finalize.
   const SerialMpiSession mpi_session;
@@ -216,6 +220,12 @@ main(int argc, char *argv[])
       Parameters::AllParameters parameters;
       parameters.read_file(command.parameter_file, command.overrides);
       parameters.restart_directory = command.restart_directory;
+      if (root && blas.changed())
+        std::cout << "BLAS: OpenBLAS's " << blas.in_use
+                  << " kernels instead of its generic ones ("
+                  << blas.library_choice
+                  << "), which it chose on this processor it does not "
+                     "know; OPENBLAS_CORETYPE overrides the choice.\n";
       switch (parameters.dimension)
         {
           case 1:

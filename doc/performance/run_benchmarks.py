@@ -432,12 +432,33 @@ def run_calculix(output_root, cases):
             command += ["--compare", str(ours)]
         print(f"[calculix] the case {case} with CalculiX ({' '.join(options)}, 1 thread)",
               flush=True)
-        result = subprocess.run(command, cwd=REPOSITORY, capture_output=True, text=True)
+        result = subprocess.run(command, cwd=REPOSITORY, capture_output=True, text=True,
+                                env=peer_environment(output_root / case))
         if result.returncode != 0:
             print(result.stdout[-2000:] + result.stderr[-2000:])
             continue
         peers[case] = json.loads((workdir / "calculix_peer.json").read_text())
     return peers
+
+
+def peer_environment(our_output):
+    """The environment of a CalculiX peer: CalculiX uses the same OpenBLAS,
+    which may not know this processor either; it gets the kernels our run
+    used (its run_statistics.json, solvers/blas_kernels.h), unless the user
+    chose them with OPENBLAS_CORETYPE."""
+    environment = dict(os.environ)
+    statistics = our_output / "run_statistics.json"
+    if "OPENBLAS_CORETYPE" not in environment and statistics.exists():
+        kernels = json.loads(statistics.read_text()).get("blas_kernels", "")
+        if kernels:
+            environment["OPENBLAS_CORETYPE"] = kernels
+    return environment
+
+
+def blas_kernels(results):
+    """The BLAS kernels of the runs, as their statistics name them."""
+    names = sorted({s.get("blas_kernels", "") for _, _, s in results} - {""})
+    return ", ".join(names) if names else "not OpenBLAS, or not recorded"
 
 
 def read_calculix(output_root):
@@ -553,6 +574,8 @@ def write_report(path, results, calculix, run, title):
     lines.append(f"Command: `{run['command']}`  ")
     lines.append(f"Commit: `{run['commit']}`, Release build  ")
     lines.append(f"Machine: {run['machine']}  ")
+    lines.append(f"OpenBLAS kernels: {blas_kernels(results)} "
+                 "(`solvers/blas_kernels.h`; the CalculiX peers use the same)  ")
     lines.append(f"Date: {run['date']}\n")
     lines.append("All times are wall-clock seconds. \"wall s\" is the run as "
                  "the program measures it (mesh, set-up, initial static "

@@ -28,7 +28,10 @@ namespace SoftRobot
     unsigned int  degree                        = 0;
     unsigned int  mpi_processes                 = 0;
     unsigned int  threads_per_process           = 0;
-    std::string   linear_solver;
+    // OpenBLAS's name for the kernels in use ("SkylakeX", "Haswell", ...;
+    // solvers/blas_kernels.h), "" with another BLAS.
+    std::string blas_kernels;
+    std::string linear_solver;
     // The solver prepared last ("Amesos_Klu", "Amesos_Mumps", "CG with
     // ML", ...): what `Direct solver = automatic` chose.
     std::string  solver_in_use;

@@ -17,6 +17,7 @@
 #include <deal.II/base/utilities.h>
 #include <output/run_statistics.h>
 #include <output/safe_file.h>
+#include <solvers/blas_kernels.h>
 #include <sstream>
 
 namespace SoftRobot
@@ -420,6 +421,7 @@ namespace SoftRobot
     statistics.mpi_processes =
       Utilities::MPI::n_mpi_processes(mpi_communicator);
     statistics.threads_per_process = MultithreadInfo::n_threads();
+    statistics.blas_kernels        = BlasKernels::in_use();
     statistics.linear_solver  = Parameters::name_of(parameters.linear_solver);
     statistics.solver_in_use  = linear_solver.solver_in_use();
     statistics.tangent_update = Parameters::name_of(parameters.tangent_update);

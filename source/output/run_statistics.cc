@@ -28,6 +28,7 @@ namespace SoftRobot
     json["degree"]                        = degree;
     json["mpi_processes"]                 = mpi_processes;
     json["threads_per_process"]           = threads_per_process;
+    json["blas_kernels"]                  = blas_kernels;
     json["linear_solver"]                 = linear_solver;
     json["solver_in_use"]                 = solver_in_use;
     json["tangent_update"]                = tangent_update;
