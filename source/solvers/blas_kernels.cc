@@ -97,7 +97,8 @@ namespace SoftRobot
       const auto init = openblas_function<void()>("gotoblas_dynamic_init");
       if (wanted.empty() || quit == nullptr || init == nullptr)
         return selection;
-      setenv("OPENBLAS_CORETYPE", wanted.c_str(), /*overwrite=*/0);
+      // Unset or empty here (replacement() keeps any other value).
+      setenv("OPENBLAS_CORETYPE", wanted.c_str(), /*overwrite=*/1);
       quit();
       init();
       selection.in_use = in_use();
