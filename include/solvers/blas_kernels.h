@@ -5,11 +5,12 @@
 // OpenBLAS is built for many processors at once and picks the kernels of
 // the one it runs on when the library is loaded. A processor its version
 // does not know gets the generic x86-64 kernels, named "Prescott", which
-// use neither AVX2 nor AVX-512. Debian 12's OpenBLAS 0.3.21 does not know
-// recent Xeons (family 6, model 207, among them), and MUMPS's dense
-// kernels (gemm, gemv, trsm in the fronts of the factor and in the back
-// substitutions) then run at a fraction of the processor's speed
-// (doc/performance_discussion.md, item 48, has the measurement).
+// use neither AVX2 nor AVX-512. Debian 12's OpenBLAS 0.3.21 does this on
+// the Xeon of family 6, model 207 (it reports "Core: Prescott" with
+// OPENBLAS_VERBOSE=2), and MUMPS's dense kernels (gemm, gemv, trsm in the
+// fronts of the factor and in the back substitutions) then run slower than
+// the processor allows (doc/performance_discussion.md, item 48, has the
+// measurement).
 //
 // OpenBLAS's documented remedy is the environment variable
 // OPENBLAS_CORETYPE, read when the library is loaded, so before main().
@@ -17,9 +18,9 @@
 // if OpenBLAS reports its generic kernels although the processor has the
 // AVX-512 instructions of its SkylakeX kernels (or AVX2 and FMA for its
 // Haswell kernels), it sets the variable and has OpenBLAS choose its
-// kernels again (through the two functions OpenBLAS itself calls when it
-// is loaded and unloaded, exported by its library though not in its
-// header). Nothing changes if the user set OPENBLAS_CORETYPE (the choice is
+// kernels again (through gotoblas_dynamic_quit() and
+// gotoblas_dynamic_init(), exported by its library though not declared in
+// its header). Nothing changes if the user set OPENBLAS_CORETYPE (the choice is
 // then theirs, also to keep the generic kernels), if OpenBLAS chose
 // kernels of its own, or if the program runs with another BLAS: all
 // OpenBLAS functions are found through dlsym, none is linked by name.

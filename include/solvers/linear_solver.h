@@ -119,10 +119,9 @@ namespace SoftRobot
     // (doc/performance_discussion.md, item 47); presumably because the
     // static tangent lacks the time steps' mass term $c\,\mathbf M$, $c =
     // 1/(\beta\Delta t^2)$, and with it a bounded condition number (not
-    // measured). The static equilibrium
-    // therefore asks for double precision (DoublePrecisionFactor). A change
-    // takes effect with the next prepare(), which then analyses the
-    // pattern again.
+    // measured). The static equilibrium therefore asks for double
+    // precision (DoublePrecisionFactor). A change takes effect with the
+    // next prepare(), which then analyses the pattern again.
     void
     allow_single_precision_factor(const bool allow);
 

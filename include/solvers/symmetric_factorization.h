@@ -26,11 +26,11 @@
 // side converted on the way in, the solution on the way out). A back
 // substitution then solves only to single precision: the usual bound on
 // its relative error is single precision's unit round-off ($6\cdot
-// 10^{-8}$) times the matrix's condition number. That is enough where the solution
-// is a correction of Newton's method: the next iteration's residual,
-// computed in double precision, carries the error of this one and the
-// iterations absorb it as they absorb the error of a matrix kept from
-// earlier iterates. The factor's entries take half the bytes; what that
+// 10^{-8}$) times the matrix's condition number. That is enough where the
+// solution is a correction of Newton's method: the next iteration's
+// residual, computed in double precision, carries the error of this one
+// and the iterations absorb it as they absorb the error of a matrix kept
+// from earlier iterates. The factor's entries take half the bytes; what that
 // saves in time is measured in doc/performance_discussion.md, item 47.
 //
 // For a matrix on one process only (MUMPS's centralized input and
