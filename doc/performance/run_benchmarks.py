@@ -120,8 +120,8 @@ HEX_MESHES = {
 }
 
 # The refinement series of the scenes' default discretisation (cases
-# default_<mesh>_window): the default mesh, the provisional reference of
-# experiment 2 and the reference mesh of experiment 1.
+# default_<mesh>_window): the default mesh, the reference of experiment 2
+# and the reference mesh of experiment 1.
 DEFAULT_SERIES = ("hex-1-3-1-2", "hex-2-6-2-2", "hex-1-3-1-2-refined")
 
 # The refinement series of the quadratic discretisation (P2MD + KEPT): the
