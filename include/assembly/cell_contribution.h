@@ -83,12 +83,19 @@ namespace SoftRobot
   struct CellProducts
   {
     // The gradients of the scalar shape functions, [a][(q, J)], in rows of
-    // `gradient_stride` >= dim n_q (the rest zero).
-    std::vector<double> gradients;
+    // `gradient_stride` >= dim n_q (the rest zero): with `pulled_back`
+    // those on the reference cell (CellGeometry's table, the same for
+    // every cell), otherwise the cell's own, in `cell_gradients`.
+    const double       *gradients       = nullptr;
     unsigned int        gradient_stride = 0;
+    bool                pulled_back     = false;
+    std::vector<double> cell_gradients;
+    // With `pulled_back`: the cell's inverse Jacobians, [q][K][J].
+    std::vector<double> inverse_jacobians;
     // The points' stresses times their weights, [(q, J)][column] in rows
     // of `stress_stride`: the first Piola-Kirchhoff stress's component
-    // (c, J) in column c, the viscous stress's in column dim + c.
+    // (c, J) in column c, the viscous stress's in column dim + c; with
+    // `pulled_back` those of $w\,\mathbf P\mathbf J^{-T}$.
     std::vector<double> stresses;
     unsigned int        stress_stride = 0;
     // The nodal values of the fields and the products.

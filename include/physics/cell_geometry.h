@@ -72,6 +72,11 @@ namespace SoftRobot
     // Per reference point: the gradients of the scalar shape functions on
     // the reference cell, [q][i].
     std::vector<Tensor<1, dim>> reference_gradients;
+    // The same by node, [a][(q, K)], in rows of `node_gradient_stride`
+    // columns (dim n_q, padded with zeros to the width of the products'
+    // tiles, see physics/point_tangent.h).
+    std::vector<double> reference_gradients_by_node;
+    unsigned int        node_gradient_stride = 0;
     // Per cell and point: the inverse Jacobian of the mapping, [cell][q],
     // and the weight times the section factor, [cell][q].
     std::vector<Tensor<2, dim>> inverse_jacobians;

@@ -138,9 +138,24 @@ namespace SoftRobot
   // Point by point, both were sums with a load and a store per term (they
   // took about 15 % of a run of experiment 1, doc/performance_discussion.md,
   // item 42).
+  //
+  // With $\partial_J\varphi_a = \sum_K\hat\partial_K\varphi_a\,
+  // (\mathbf J^{-1})_{KJ}$ both products can take the gradients on the
+  // reference cell, which are the same for every cell (CellGeometry's
+  // table by node), and apply the inverse Jacobian point by point: to the
+  // product's result for the fields' gradients, to the stresses
+  // ($w\,\mathbf P\mathbf J^{-T}$) before the product for the forces. A
+  // cell with many shape functions then forms no gradients of its own for
+  // them (reset_cell_products() says when; doc/performance_discussion.md,
+  // item 50).
 
-  // The gradients of a cell's scalar shape functions at its points, by
-  // node; the stresses zero.
+  // The number of columns a product's factor with `columns` columns is
+  // stored in: a multiple of the width of the tiles.
+  unsigned int
+  product_stride(const unsigned int columns);
+
+  // The gradients by node for the products (the reference ones and the
+  // cell's inverse Jacobians, or the cell's own); the stresses zero.
   template <int dim>
   void
   reset_cell_products(const CellGeometry<dim> &geometry,
@@ -156,7 +171,8 @@ namespace SoftRobot
                   const std::vector<const double *>                &fields,
                   const std::vector<std::vector<Tensor<2, dim>> *> &gradients);
 
-  // Records the stress P of point q with its weight, as the elastic
+  // Records the stress P of point q with its weight, pulled back to the
+  // reference cell, as the elastic
   // (`column` 0) or the viscous (1) stress.
   template <int dim>
   void

@@ -7,6 +7,7 @@
 #include <core/config.h>
 #include <deal.II/fe/fe_values.h>
 #include <physics/cell_geometry.h>
+#include <physics/point_tangent.h>
 
 namespace SoftRobot
 {
@@ -50,6 +51,15 @@ namespace SoftRobot
             reference_gradients[q * dofs_per_cell + shape_dofs[a * dim + c]] ==
               reference_gradients[q * dofs_per_cell + shape_dofs[a * dim]],
             ExcInternalError());
+
+    node_gradient_stride = product_stride(dim * n_q_points);
+    reference_gradients_by_node.assign(n_shape_functions * node_gradient_stride,
+                                       0.);
+    for (unsigned int a = 0; a < n_shape_functions; ++a)
+      for (unsigned int q = 0; q < n_q_points; ++q)
+        for (unsigned int K = 0; K < dim; ++K)
+          reference_gradients_by_node[a * node_gradient_stride + q * dim + K] =
+            reference_gradients[q * dofs_per_cell + shape_dofs[a * dim]][K];
 
     FEValues<dim>                        fe_values(mapping,
                             fe,

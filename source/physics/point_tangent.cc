@@ -400,11 +400,25 @@ namespace SoftRobot
 
 
   // @sect4{The gradients and forces of a cell as products}
-  //
-  // The gradients by node, $G_{a,(q,J)} = \partial_J\varphi_a(\mathbf
-  // x_q)$, in rows padded to a multiple of the tiles' width; the padding
-  // is zero, so that they can also serve as the left factor of a product
-  // summed over all of a row.
+  unsigned int
+  product_stride(const unsigned int columns)
+  {
+    return padded(columns);
+  }
+
+
+
+  // The gradients by node: the reference ones, $\hat G_{a,(q,K)} =
+  // \hat\partial_K\varphi_a(\hat{\mathbf x}_q)$, which are CellGeometry's
+  // (the cell then only copies its inverse Jacobians), or the cell's own,
+  // $G_{a,(q,J)} = \partial_J\varphi_a(\mathbf x_q)$. Forming its own
+  // costs a cell $n\,n_q d^2$ multiply-adds; the pull-backs of two fields'
+  // gradients and two stresses about $4 n_q d^3$. The reference gradients
+  // are taken where they are the cheaper, for at least $4d$ shape
+  // functions (quadratic hexahedra, not the linear tetrahedra). Either
+  // way the rows are padded to a multiple of the tiles' width with zeros,
+  // so that they can also serve as the left factor of a product summed
+  // over all of a row.
   template <int dim>
   void
   reset_cell_products(const CellGeometry<dim> &geometry,
@@ -413,36 +427,55 @@ namespace SoftRobot
   {
     const unsigned int n      = geometry.n_shape_functions;
     const unsigned int n_q    = geometry.n_q_points;
-    const unsigned int stride = padded(dim * n_q);
+    const unsigned int stride = geometry.node_gradient_stride;
     products.gradient_stride  = stride;
-    products.gradients.resize(n * stride);
-    for (unsigned int a = 0; a < n; ++a)
-      for (unsigned int k = dim * n_q; k < stride; ++k)
-        products.gradients[a * stride + k] = 0.;
-    // Point by point, with the inverse Jacobian of the point in local
-    // numbers (the same products as CellGeometry::shape_gradient()).
-    for (unsigned int q = 0; q < n_q; ++q)
+    products.pulled_back      = n >= 4 * dim;
+    if (products.pulled_back)
       {
-        const Tensor<2, dim> &inverse_jacobian =
-          geometry.inverse_jacobians[cell * n_q + q];
-        double J_inv[dim][dim];
-        for (unsigned int i = 0; i < dim; ++i)
-          for (unsigned int J = 0; J < dim; ++J)
-            J_inv[i][J] = inverse_jacobian[i][J];
-        for (unsigned int a = 0; a < n; ++a)
+        products.gradients = geometry.reference_gradients_by_node.data();
+        products.inverse_jacobians.resize(n_q * dim * dim);
+        for (unsigned int q = 0; q < n_q; ++q)
           {
-            const Tensor<1, dim> &reference =
-              geometry.reference_gradients[q * geometry.dofs_per_cell +
-                                           geometry.shape_dofs[a * dim]];
-            double *entry = &products.gradients[a * stride + q * dim];
-            for (unsigned int J = 0; J < dim; ++J)
+            const Tensor<2, dim> &inverse_jacobian =
+              geometry.inverse_jacobians[cell * n_q + q];
+            for (unsigned int K = 0; K < dim; ++K)
+              for (unsigned int J = 0; J < dim; ++J)
+                products.inverse_jacobians[(q * dim + K) * dim + J] =
+                  inverse_jacobian[K][J];
+          }
+      }
+    else
+      {
+        std::vector<double> &gradients = products.cell_gradients;
+        gradients.resize(n * stride);
+        for (unsigned int a = 0; a < n; ++a)
+          for (unsigned int k = dim * n_q; k < stride; ++k)
+            gradients[a * stride + k] = 0.;
+        // Point by point, with the inverse Jacobian of the point in local
+        // numbers (the same products as CellGeometry::shape_gradient()).
+        for (unsigned int q = 0; q < n_q; ++q)
+          {
+            const Tensor<2, dim> &inverse_jacobian =
+              geometry.inverse_jacobians[cell * n_q + q];
+            double J_inv[dim][dim];
+            for (unsigned int i = 0; i < dim; ++i)
+              for (unsigned int J = 0; J < dim; ++J)
+                J_inv[i][J] = inverse_jacobian[i][J];
+            for (unsigned int a = 0; a < n; ++a)
               {
-                double sum = 0.;
-                for (unsigned int i = 0; i < dim; ++i)
-                  sum += reference[i] * J_inv[i][J];
-                entry[J] = sum;
+                const double *reference =
+                  &geometry.reference_gradients_by_node[a * stride + q * dim];
+                double *entry = &gradients[a * stride + q * dim];
+                for (unsigned int J = 0; J < dim; ++J)
+                  {
+                    double sum = 0.;
+                    for (unsigned int i = 0; i < dim; ++i)
+                      sum += reference[i] * J_inv[i][J];
+                    entry[J] = sum;
+                  }
               }
           }
+        products.gradients = gradients.data();
       }
     products.stress_stride = padded(2 * dim);
     products.stresses.assign(stride * products.stress_stride, 0.);
@@ -451,7 +484,10 @@ namespace SoftRobot
 
 
   // $H^{(f)}_{c,(q,J)} = \sum_a u^{(f)}_{a c}\,G_{a,(q,J)}$ for the fields
-  // f: a product of the nodal values (rows (f, c)) with the gradients.
+  // f: a product of the nodal values (rows (f, c)) with the gradients. With
+  // the reference gradients the product is $\hat H^{(f)}_{c,(q,K)}$, and
+  // $H^{(f)}_{q,cJ} = \sum_K \hat H^{(f)}_{c,(q,K)} (\mathbf
+  // J_q^{-1})_{KJ}$.
   template <int dim>
   void
   field_gradients(const CellGeometry<dim>                          &geometry,
@@ -477,18 +513,38 @@ namespace SoftRobot
                          stride,
                          n,
                          products.values.data(),
-                         products.gradients.data(),
+                         products.gradients,
                          false,
                          products.result.data()});
     for (unsigned int f = 0; f < n_fields; ++f)
       {
         std::vector<Tensor<2, dim>> &H = *gradients[f];
         H.resize(n_q);
+        if (!products.pulled_back)
+          {
+            for (unsigned int q = 0; q < n_q; ++q)
+              for (unsigned int c = 0; c < dim; ++c)
+                for (unsigned int J = 0; J < dim; ++J)
+                  H[q][c][J] =
+                    products.result[(f * dim + c) * stride + q * dim + J];
+            continue;
+          }
         for (unsigned int q = 0; q < n_q; ++q)
-          for (unsigned int c = 0; c < dim; ++c)
-            for (unsigned int J = 0; J < dim; ++J)
-              H[q][c][J] =
-                products.result[(f * dim + c) * stride + q * dim + J];
+          {
+            const double *J_inv = &products.inverse_jacobians[q * dim * dim];
+            for (unsigned int c = 0; c < dim; ++c)
+              {
+                const double *reference =
+                  &products.result[(f * dim + c) * stride + q * dim];
+                for (unsigned int J = 0; J < dim; ++J)
+                  {
+                    double sum = 0.;
+                    for (unsigned int K = 0; K < dim; ++K)
+                      sum += reference[K] * J_inv[K * dim + J];
+                    H[q][c][J] = sum;
+                  }
+              }
+          }
       }
   }
 
@@ -502,20 +558,40 @@ namespace SoftRobot
                    const double          weight,
                    CellProducts         &products)
   {
-    for (unsigned int J = 0; J < dim; ++J)
+    if (!products.pulled_back)
+      {
+        for (unsigned int J = 0; J < dim; ++J)
+          {
+            double *row =
+              &products.stresses[(q * dim + J) * products.stress_stride +
+                                 column * dim];
+            for (unsigned int c = 0; c < dim; ++c)
+              row[c] = weight * P[c][J];
+          }
+        return;
+      }
+    const double *J_inv = &products.inverse_jacobians[q * dim * dim];
+    for (unsigned int K = 0; K < dim; ++K)
       {
         double *row =
           &products
-             .stresses[(q * dim + J) * products.stress_stride + column * dim];
+             .stresses[(q * dim + K) * products.stress_stride + column * dim];
         for (unsigned int c = 0; c < dim; ++c)
-          row[c] = weight * P[c][J];
+          {
+            double sum = 0.;
+            for (unsigned int J = 0; J < dim; ++J)
+              sum += P[c][J] * J_inv[K * dim + J];
+            row[c] = weight * sum;
+          }
       }
   }
 
 
 
   // $f^{(s)}_{a c} = \sum_{(q,J)} G_{a,(q,J)}\,w_q P^{(s)}_{q,cJ}$ for both
-  // stresses at once: the gradients times the stresses' columns.
+  // stresses at once: the gradients times the stresses' columns (or
+  // $\sum_{(q,K)} \hat G_{a,(q,K)}\,w_q (\mathbf P^{(s)}_q\mathbf
+  // J_q^{-T})_{cK}$ with the reference gradients).
   template <int dim>
   void
   add_stress_forces(const CellGeometry<dim> &geometry,
@@ -531,7 +607,7 @@ namespace SoftRobot
                          1,
                          stride,
                          products.gradient_stride,
-                         products.gradients.data(),
+                         products.gradients,
                          products.stresses.data(),
                          false,
                          products.result.data()});
