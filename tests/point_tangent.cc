@@ -212,9 +212,11 @@ TYPED_TEST(PointTangentTest, CellProductEqualsTheSumOverPoints)
 // values, stresses and weights, the quadratic cell and the linear simplex.
 // The gradients, sums of n products in the order of the nodes (the order
 // the products keep), must be the same to the bit as those sums formed
-// directly in double; the forces, sums of d n_q products of
-// three factors, within $\gamma_{d n_q + 2}$ times their terms' absolute
-// values.
+// directly in double: of the cell's gradients, or, for a cell with at
+// least 4 d shape functions, of the reference gradients, then times the
+// inverse Jacobian. The forces, sums of $d^2 n_q$ products of four
+// factors, summed over one index of the inverse Jacobian first, must be
+// within $\gamma_{d n_q + d + 2}$ times their terms' absolute values.
 TYPED_TEST(PointTangentTest, FieldGradientsAndForcesAreTheSumsOverPoints)
 {
   constexpr int                          dim = TypeParam::value;
@@ -243,6 +245,7 @@ TYPED_TEST(PointTangentTest, FieldGradientsAndForcesAreTheSumsOverPoints)
               inverse[d][e] = uniform(rng) + (d == e ? 2. : 0.);
           geometry.inverse_jacobians.push_back(inverse);
         }
+      geometry.form_gradients_by_node();
       std::vector<double> u(n * dim), v(n * dim);
       for (unsigned int i = 0; i < n * dim; ++i)
         {
@@ -274,26 +277,58 @@ TYPED_TEST(PointTangentTest, FieldGradientsAndForcesAreTheSumsOverPoints)
       Vector<double> force(n * dim), second_force(n * dim);
       add_stress_forces(geometry, products, force, second_force);
 
-      // The gradients: the sums of HyperelasticSolid, in double.
+      // The gradients, in double: the sums over the nodes of the cell's
+      // gradients, or, for a cell with at least 4 dim shape functions, of
+      // the reference gradients, times the inverse Jacobian.
+      const bool pulled_back = n >= 4 * dim;
+      EXPECT_EQ(products.pulled_back, pulled_back);
       unsigned int gradient_mismatches = 0;
       for (unsigned int q = 0; q < n_q; ++q)
         for (unsigned int c = 0; c < dim; ++c)
-          for (unsigned int J = 0; J < dim; ++J)
-            {
-              double sum_u = 0., sum_v = 0.;
-              for (unsigned int a = 0; a < n; ++a)
-                {
-                  const Tensor<1, dim> g = geometry.shape_gradient(0, q, a);
-                  sum_u += u[geometry.shape_dofs[a * dim + c]] * g[J];
-                  sum_v += v[geometry.shape_dofs[a * dim + c]] * g[J];
-                }
-              gradient_mismatches +=
-                (H[q][c][J] != sum_u) + (L[q][c][J] != sum_v);
-            }
+          {
+            Tensor<1, dim> reference_u, reference_v;
+            for (unsigned int a = 0; a < n; ++a)
+              {
+                const Tensor<1, dim> &g_ref =
+                  geometry.reference_gradients[q * n * dim +
+                                               geometry.shape_dofs[a * dim]];
+                for (unsigned int K = 0; K < dim; ++K)
+                  {
+                    reference_u[K] +=
+                      u[geometry.shape_dofs[a * dim + c]] * g_ref[K];
+                    reference_v[K] +=
+                      v[geometry.shape_dofs[a * dim + c]] * g_ref[K];
+                  }
+              }
+            for (unsigned int J = 0; J < dim; ++J)
+              {
+                double sum_u = 0., sum_v = 0.;
+                if (pulled_back)
+                  for (unsigned int K = 0; K < dim; ++K)
+                    {
+                      sum_u +=
+                        reference_u[K] * geometry.inverse_jacobians[q][K][J];
+                      sum_v +=
+                        reference_v[K] * geometry.inverse_jacobians[q][K][J];
+                    }
+                else
+                  for (unsigned int a = 0; a < n; ++a)
+                    {
+                      const Tensor<1, dim> g = geometry.shape_gradient(0, q, a);
+                      sum_u += u[geometry.shape_dofs[a * dim + c]] * g[J];
+                      sum_v += v[geometry.shape_dofs[a * dim + c]] * g[J];
+                    }
+                gradient_mismatches +=
+                  (H[q][c][J] != sum_u) + (L[q][c][J] != sum_v);
+              }
+          }
 
-      // The forces.
+      // The forces: sums over (q, K, J) of products of four factors,
+      // $\hat\partial_K\varphi_a\,(\mathbf J^{-1})_{KJ}\,P_{cJ}\,w$,
+      // summed over J first (in the gradient or in the pulled-back
+      // stress), then over (q, K) or (q, J).
       const double eps   = 0.5 * std::numeric_limits<double>::epsilon();
-      const double m     = dim * n_q + 2;
+      const double m     = dim * n_q + dim + 2;
       const double gamma = m * eps / (1. - m * eps);
       double       worst = 0.;
       for (unsigned int a = 0; a < n; ++a)
@@ -302,19 +337,23 @@ TYPED_TEST(PointTangentTest, FieldGradientsAndForcesAreTheSumsOverPoints)
             long double sums[2] = {0., 0.}, magnitudes[2] = {0., 0.};
             for (unsigned int q = 0; q < n_q; ++q)
               {
-                const Tensor<1, dim> g = geometry.shape_gradient(0, q, a);
-                for (unsigned int J = 0; J < dim; ++J)
-                  {
-                    const long double terms[2] = {
-                      static_cast<long double>(g[J]) * P[q][c][J] * weight[q],
-                      static_cast<long double>(g[J]) * P_v[q][c][J] *
-                        weight[q]};
-                    for (unsigned int s = 0; s < 2; ++s)
-                      {
-                        sums[s] += terms[s];
-                        magnitudes[s] += std::abs(terms[s]);
-                      }
-                  }
+                const Tensor<1, dim> &g_ref =
+                  geometry.reference_gradients[q * n * dim +
+                                               geometry.shape_dofs[a * dim]];
+                for (unsigned int K = 0; K < dim; ++K)
+                  for (unsigned int J = 0; J < dim; ++J)
+                    {
+                      const long double g = static_cast<long double>(g_ref[K]) *
+                                            geometry.inverse_jacobians[q][K][J];
+                      const long double terms[2] = {g * P[q][c][J] * weight[q],
+                                                    g * P_v[q][c][J] *
+                                                      weight[q]};
+                      for (unsigned int s = 0; s < 2; ++s)
+                        {
+                          sums[s] += terms[s];
+                          magnitudes[s] += std::abs(terms[s]);
+                        }
+                    }
               }
             const unsigned int i         = geometry.shape_dofs[a * dim + c];
             const double       values[2] = {force(i), second_force(i)};

@@ -74,7 +74,8 @@ namespace SoftRobot
     std::vector<Tensor<1, dim>> reference_gradients;
     // The same by node, [a][(q, K)], in rows of `node_gradient_stride`
     // columns (dim n_q, padded with zeros to the width of the products'
-    // tiles, see physics/point_tangent.h).
+    // tiles, see physics/point_tangent.h), formed from
+    // `reference_gradients` by form_gradients_by_node().
     std::vector<double> reference_gradients_by_node;
     unsigned int        node_gradient_stride = 0;
     // Per cell and point: the inverse Jacobian of the mapping, [cell][q],
@@ -83,6 +84,11 @@ namespace SoftRobot
     std::vector<double>         JxW;
     // Per cell: its material id.
     std::vector<types::material_id> material_ids;
+
+    // Forms `reference_gradients_by_node` (reinit() does; for a geometry
+    // set up by hand, after its reference gradients).
+    void
+    form_gradients_by_node();
 
     // The gradients of the shape functions at every point of a cell,
     // [q][i] (`gradients` is resized to n_q_points * dofs_per_cell).

@@ -52,14 +52,7 @@ namespace SoftRobot
               reference_gradients[q * dofs_per_cell + shape_dofs[a * dim]],
             ExcInternalError());
 
-    node_gradient_stride = product_stride(dim * n_q_points);
-    reference_gradients_by_node.assign(n_shape_functions * node_gradient_stride,
-                                       0.);
-    for (unsigned int a = 0; a < n_shape_functions; ++a)
-      for (unsigned int q = 0; q < n_q_points; ++q)
-        for (unsigned int K = 0; K < dim; ++K)
-          reference_gradients_by_node[a * node_gradient_stride + q * dim + K] =
-            reference_gradients[q * dofs_per_cell + shape_dofs[a * dim]][K];
+    form_gradients_by_node();
 
     FEValues<dim>                        fe_values(mapping,
                             fe,
@@ -84,6 +77,23 @@ namespace SoftRobot
           material_ids.push_back(cell->material_id());
           ++n_cells;
         }
+  }
+
+
+
+  // @sect4{CellGeometry::form_gradients_by_node}
+  template <int dim>
+  void
+  CellGeometry<dim>::form_gradients_by_node()
+  {
+    node_gradient_stride = product_stride(dim * n_q_points);
+    reference_gradients_by_node.assign(n_shape_functions * node_gradient_stride,
+                                       0.);
+    for (unsigned int a = 0; a < n_shape_functions; ++a)
+      for (unsigned int q = 0; q < n_q_points; ++q)
+        for (unsigned int K = 0; K < dim; ++K)
+          reference_gradients_by_node[a * node_gradient_stride + q * dim + K] =
+            reference_gradients[q * dofs_per_cell + shape_dofs[a * dim]][K];
   }
 
 
