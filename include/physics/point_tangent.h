@@ -171,9 +171,9 @@ namespace SoftRobot
                   const std::vector<const double *>                &fields,
                   const std::vector<std::vector<Tensor<2, dim>> *> &gradients);
 
-  // Records the stress P of point q with its weight, pulled back to the
-  // reference cell, as the elastic
-  // (`column` 0) or the viscous (1) stress.
+  // Records the stress P of point q with its weight (pulled back to the
+  // reference cell where the products take the reference gradients), as
+  // the elastic (`column` 0) or the viscous (1) stress.
   template <int dim>
   void
   add_point_stress(const unsigned int    q,

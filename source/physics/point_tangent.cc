@@ -413,9 +413,11 @@ namespace SoftRobot
   // (the cell then only copies its inverse Jacobians), or the cell's own,
   // $G_{a,(q,J)} = \partial_J\varphi_a(\mathbf x_q)$. Forming its own
   // costs a cell $n\,n_q d^2$ multiply-adds; the pull-backs of two fields'
-  // gradients and two stresses about $4 n_q d^3$. The reference gradients
-  // are taken where they are the cheaper, for at least $4d$ shape
-  // functions (quadratic hexahedra, not the linear tetrahedra). Either
+  // gradients and two stresses about $4 n_q d^3$. By that count the
+  // reference gradients are the cheaper for at least $4d$ shape functions
+  // (quadratic hexahedra, not the tetrahedra), and are taken there; the
+  // gain was measured on the quadratic hexahedra only
+  // (doc/performance_discussion.md, item 50). Either
   // way the rows are padded to a multiple of the tiles' width with zeros,
   // so that they can also serve as the left factor of a product summed
   // over all of a row.
